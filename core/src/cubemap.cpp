@@ -40,7 +40,7 @@ FaceCoord directionToFace(const glm::vec3& r) {
 glm::vec3 faceToDirection(Face face, float s, float t) {
     const float sc = 2.0f * s - 1.0f;
     const float tc = 2.0f * t - 1.0f;
-    glm::vec3 d;
+    glm::vec3 d(0.0f);
     switch (face) {
         case Face::PX: d = {1.0f, -tc, -sc}; break;
         case Face::NX: d = {-1.0f, -tc, sc}; break;
