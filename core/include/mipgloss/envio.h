@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +73,13 @@ using ProgressFn = std::function<void(float fraction)>;
 ImportedEnvironment loadEnvironment(const std::filesystem::path& path,
                                     const ImportOptions& options = {},
                                     const ProgressFn& progress = {});
+
+// Loads a single image (lat-long, cross or strip) from bytes in memory, e.g. an embedded resource.
+// `name` stands for the file in messages, and its extension tells OpenImageIO the format.
+ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> bytes,
+                                              const std::string& name,
+                                              const ImportOptions& options = {},
+                                              const ProgressFn& progress = {});
 
 // Resamples a cube to another face size: area-weighted when shrinking, bilinear when growing.
 CubeMap resampleCube(const CubeMap& cube, int size);
