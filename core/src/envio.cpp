@@ -6,17 +6,15 @@
 #include <OpenImageIO/imageio.h>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
-#include <memory>
-#include <mutex>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -324,13 +322,17 @@ FaceSet lookUpFaces(const std::map<std::string, std::vector<fs::path>>& byStem, 
     return set;
 }
 
-[[noreturn]] void throwMissingFaces(const fs::path& where, const FaceSet& set, const FaceName& name) {
+[[noreturn]] void throwMissingFaces(const fs::path& where, const FaceSet& set, const FaceName& name,
+                                   Handedness handedness) {
     const Family& fam = kFamilies[static_cast<std::size_t>(name.family)];
     std::string reason;
     for (std::size_t i = 0; i < 6; ++i) {
         if (!set.files[i].empty()) continue;
+        Face face = kAllFaces[i];
+        if (handedness == Handedness::Left && (face == Face::PZ || face == Face::NZ))
+            face = face == Face::PZ ? Face::NZ : Face::PZ;
         if (!reason.empty()) reason += "; ";
-        reason += std::string("missing face ") + faceLabel(kAllFaces[i]) + ": no file named " +
+        reason += std::string("missing face ") + faceLabel(face) + ": no file named " +
                   name.prefix + fam.tokens[i] + ".<image extension>";
     }
     reason += " (naming family " + std::string(fam.description) + ")";
@@ -401,14 +403,32 @@ CubeMap cubeFromFaceFiles(const std::array<fs::path, 6>& files, Handedness hande
     return cube;
 }
 
+// Where each face sits in a single-image layout, in face-size cells, indexed by GL face.
+struct Cell {
+    int col, row;
+    Place place;
+};
+using Cells = std::array<Cell, 6>;
+
 struct Proportion {
     EnvLayout layout;
     int w, h;
+    const char* description;
+    Cells cells;  // unused for lat-long
 };
+constexpr Place kAsIs = Place::AsIs;
 constexpr Proportion kProportions[] = {
-    {EnvLayout::LatLong, 2, 1},       {EnvLayout::HorizontalCross, 4, 3},
-    {EnvLayout::VerticalCross, 3, 4}, {EnvLayout::HorizontalStrip, 6, 1},
-    {EnvLayout::VerticalStrip, 1, 6},
+    {EnvLayout::LatLong, 2, 1, "lat-long", {}},
+    // Exactly the picture in cubemap.h: PY above PZ, row NX PZ PX NZ, NY below PZ.
+    {EnvLayout::HorizontalCross, 4, 3, "horizontal cross",
+     {{{2, 1, kAsIs}, {0, 1, kAsIs}, {1, 0, kAsIs}, {1, 2, kAsIs}, {1, 1, kAsIs}, {3, 1, kAsIs}}}},
+    // Its middle column, with -Z hung below -Y turned 180° so that its edge meets -Y's.
+    {EnvLayout::VerticalCross, 3, 4, "vertical cross",
+     {{{2, 1, kAsIs}, {0, 1, kAsIs}, {1, 0, kAsIs}, {1, 2, kAsIs}, {1, 1, kAsIs}, {1, 3, Place::Rotate180}}}},
+    {EnvLayout::HorizontalStrip, 6, 1, "horizontal strip",
+     {{{0, 0, kAsIs}, {1, 0, kAsIs}, {2, 0, kAsIs}, {3, 0, kAsIs}, {4, 0, kAsIs}, {5, 0, kAsIs}}}},
+    {EnvLayout::VerticalStrip, 1, 6, "vertical strip",
+     {{{0, 0, kAsIs}, {0, 1, kAsIs}, {0, 2, kAsIs}, {0, 3, kAsIs}, {0, 4, kAsIs}, {0, 5, kAsIs}}}},
 };
 constexpr const char* kAcceptedProportions =
     "accepted proportions: 2:1 lat-long, 4:3 horizontal cross, 3:4 vertical cross, "
@@ -431,41 +451,15 @@ CubeMap cubeFromLayout(const Image& img, EnvLayout layout, const fs::path& file)
         if (p.layout == layout) prop = &p;
     const int n = img.width / prop->w;
     if (n < 1 || img.width != n * prop->w || img.height != n * prop->h)
-        throw EnvError(file, std::string("a ") + layoutName(layout) + " image must be " +
+        throw EnvError(file, std::string("a ") + prop->description + " image must be " +
                                  std::to_string(prop->w) + ":" + std::to_string(prop->h) +
                                  " with square faces (width divisible by " +
                                  std::to_string(prop->w) + "), but this one is " +
                                  sizeText(img.width, img.height));
     CubeMap cube(n);
-    switch (layout) {
-        case EnvLayout::HorizontalCross:
-            // Exactly the picture in cubemap.h.
-            copyFace(img, 1 * n, 0 * n, n, cube, Face::PY, Place::AsIs);
-            copyFace(img, 0 * n, 1 * n, n, cube, Face::NX, Place::AsIs);
-            copyFace(img, 1 * n, 1 * n, n, cube, Face::PZ, Place::AsIs);
-            copyFace(img, 2 * n, 1 * n, n, cube, Face::PX, Place::AsIs);
-            copyFace(img, 3 * n, 1 * n, n, cube, Face::NZ, Place::AsIs);
-            copyFace(img, 1 * n, 2 * n, n, cube, Face::NY, Place::AsIs);
-            break;
-        case EnvLayout::VerticalCross:
-            // The horizontal cross's middle column, with -Z hung below -Y: turned 180° so that
-            // its edge meets -Y's bottom edge.
-            copyFace(img, 1 * n, 0 * n, n, cube, Face::PY, Place::AsIs);
-            copyFace(img, 0 * n, 1 * n, n, cube, Face::NX, Place::AsIs);
-            copyFace(img, 1 * n, 1 * n, n, cube, Face::PZ, Place::AsIs);
-            copyFace(img, 2 * n, 1 * n, n, cube, Face::PX, Place::AsIs);
-            copyFace(img, 1 * n, 2 * n, n, cube, Face::NY, Place::AsIs);
-            copyFace(img, 1 * n, 3 * n, n, cube, Face::NZ, Place::Rotate180);
-            break;
-        case EnvLayout::HorizontalStrip:
-            for (int i = 0; i < 6; ++i)
-                copyFace(img, i * n, 0, n, cube, kAllFaces[static_cast<std::size_t>(i)], Place::AsIs);
-            break;
-        case EnvLayout::VerticalStrip:
-            for (int i = 0; i < 6; ++i)
-                copyFace(img, 0, i * n, n, cube, kAllFaces[static_cast<std::size_t>(i)], Place::AsIs);
-            break;
-        default: break;
+    for (std::size_t i = 0; i < 6; ++i) {
+        const Cell& c = prop->cells[i];
+        copyFace(img, c.col * n, c.row * n, n, cube, kAllFaces[i], c.place);
     }
     return cube;
 }
@@ -481,7 +475,7 @@ CubeMap cubeFromLayout(const Image& img, EnvLayout layout, const fs::path& file)
 // stratum it covers) nor leaves holes, and its weighted mean is the image's own. The strata are
 // spaced at most half the angular width of the smallest cube texel (a corner texel: (2/N)/3 rad)
 // so every texel receives several; a texel that still gets none takes a bilinear sample at its
-// centre.
+// centre. Bright pixels are handled apart (BrightSplit below).
 //
 // The loop gathers rather than scatters: each face row is one task, and a texel visits the
 // strata inside a conservative (θ, φ) box around its footprint, so no two tasks write the same
@@ -580,12 +574,6 @@ struct LatLongSampler {
     }
 };
 
-double wrapAngle(double a) {
-    while (a > kPi) a -= 2.0 * kPi;
-    while (a <= -kPi) a += 2.0 * kPi;
-    return a;
-}
-
 void convertTexel(const LatLongSampler& ll, CubeMap& cube, Face f, int x, int y) {
     const int n = cube.size();
     const float inv = 1.0f / static_cast<float>(n);
@@ -603,18 +591,41 @@ void convertTexel(const LatLongSampler& ll, CubeMap& cube, Face f, int x, int y)
     }
     const glm::vec3 centre = texelDirection(f, x, y, n);
     const double phiC = std::atan2(static_cast<double>(centre.z), static_cast<double>(centre.x));
-    double thetaMin = kPi, thetaMax = 0.0, dMin = 0.0, dMax = 0.0, seg = 0.0;
+    // Azimuths relative to the centre's, compared through a pseudo-angle (monotonic in the angle
+    // over (-π, π]) so that only the two extremes need an atan2.
+    const double uc = std::cos(phiC), us = std::sin(phiC);
+    auto pseudo = [](double sn, double cs) {
+        const double d = std::fabs(sn) + std::fabs(cs);
+        return d > 0.0 ? std::copysign(1.0 - cs / d, sn) : 0.0;
+    };
+    // θ from the points of least and greatest y, through atan2 (acos loses digits near the poles);
+    // the segment length from the chord (a dot product near 1 loses them too).
+    glm::dvec3 top(0.0, -2.0, 0.0), bottom(0.0, 2.0, 0.0);
+    double maxChord = 0.0;
+    double pMin = 0.0, pMax = 0.0;
+    glm::dvec2 atMin(1.0, 0.0), atMax(1.0, 0.0);  // (cos, sin) of the extreme relative azimuths
     for (std::size_t i = 0; i < boundary.size(); ++i) {
-        const glm::vec3& d = boundary[i];
-        const double theta = std::acos(std::clamp(static_cast<double>(d.y), -1.0, 1.0));
-        thetaMin = std::min(thetaMin, theta);
-        thetaMax = std::max(thetaMax, theta);
-        const double dphi = wrapAngle(std::atan2(static_cast<double>(d.z), static_cast<double>(d.x)) - phiC);
-        dMin = std::min(dMin, dphi);
-        dMax = std::max(dMax, dphi);
-        const glm::vec3& next = boundary[(i + 1) % boundary.size()];
-        seg = std::max(seg, std::acos(std::clamp(static_cast<double>(glm::dot(d, next)), -1.0, 1.0)));
+        const glm::dvec3 d(boundary[i]);
+        if (d.y > top.y) top = d;
+        if (d.y < bottom.y) bottom = d;
+        const double cs = d.x * uc + d.z * us, sn = d.z * uc - d.x * us;
+        const double p = pseudo(sn, cs);
+        if (p < pMin) {
+            pMin = p;
+            atMin = {cs, sn};
+        }
+        if (p > pMax) {
+            pMax = p;
+            atMax = {cs, sn};
+        }
+        maxChord = std::max(maxChord, glm::length(d - glm::dvec3(boundary[(i + 1) % boundary.size()])));
     }
+    auto polar = [](const glm::dvec3& d) { return std::atan2(std::hypot(d.x, d.z), d.y); };
+    double thetaMin = polar(top);
+    double thetaMax = polar(bottom);
+    const double dMin = pMin < 0.0 ? std::atan2(atMin.y, atMin.x) : 0.0;
+    const double dMax = pMax > 0.0 ? std::atan2(atMax.y, atMax.x) : 0.0;
+    const double seg = 2.0 * std::asin(std::min(1.0, 0.5 * maxChord));
     // Between two boundary samples the boundary strays at most seg/2 in angle, so θ at most seg/2
     // and φ at most (seg/2)/sin θ.
     const double margin = 0.5 * seg + 1e-5;
@@ -657,7 +668,7 @@ void convertTexel(const LatLongSampler& ll, CubeMap& cube, Face f, int x, int y)
     for (int b = bLo; b <= bHi; ++b) {
         const LatLongSampler::Row& r = ll.rows[static_cast<std::size_t>(b)];
         for (int a = aLo; a <= aHi; ++a) {
-            const int ai = (a % ll.nu + ll.nu) % ll.nu;
+            const int ai = a < 0 ? a + ll.nu : (a >= ll.nu ? a - ll.nu : a);
             const LatLongSampler::Column& c = ll.cols[static_cast<std::size_t>(ai)];
             const glm::vec3 dir(r.sinTheta * c.cosPhi, r.cosTheta, r.sinTheta * c.sinPhi);
             const FaceCoord fc = directionToFace(dir);
@@ -673,8 +684,115 @@ void convertTexel(const LatLongSampler& ll, CubeMap& cube, Face f, int x, int y)
     cube.at(f, x, y) = wsum > 0.0 ? Rgb(sum / wsum) : ll.sample(centre);
 }
 
+// The few pixels far above the image's mean (a sun) carry much of its energy, and the ratio
+// Σw·L/Σw above scales each texel's strata by Ω_texel/Σw, which is 1 only up to how the strata
+// tile the texel: a percent or two for one stratum's worth of sun. So the image is split into
+// min(L, T), converted as above, and the sparse excess max(L - T, 0), whose energy is splatted
+// exactly: each excess pixel is cut into sub-strata far smaller than a texel, each carrying its
+// exact solid angle times the excess, and a texel adds (its energy)/Ω_texel. Σ Ω·value is then
+// the image's own weighted sum for the excess, and constants and smooth images are unaffected.
+struct BrightSplit {
+    Image clamped;
+    struct Pixel { int i, j; Rgb excess; };
+    std::vector<Pixel> excess;
+};
+
+BrightSplit splitBright(const Image& img) {
+    BrightSplit out{img, {}};
+    glm::dvec3 sum(0.0);
+    double wsum = 0.0;
+    std::vector<float> peaks(img.px.size());
+    for (int j = 0; j < img.height; ++j) {
+        const double w = std::cos(kPi * j / img.height) - std::cos(kPi * (j + 1) / img.height);
+        for (int i = 0; i < img.width; ++i) {
+            const Rgb& p = img.at(i, j);
+            sum += w * glm::dvec3(p);
+            wsum += w;
+            peaks[static_cast<std::size_t>(j) * static_cast<std::size_t>(img.width) + static_cast<std::size_t>(i)] =
+                std::max({p.x, p.y, p.z});
+        }
+    }
+    const glm::dvec3 mean = sum / wsum;
+    // 16× the brightest channel's mean, raised if need be so that at most 2 % of pixels exceed it.
+    float threshold = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+    const std::size_t cap = img.px.size() / 50;
+    if (cap > 0 && cap < peaks.size()) {
+        std::nth_element(peaks.begin(), peaks.end() - static_cast<std::ptrdiff_t>(cap), peaks.end());
+        threshold = std::max(threshold, *(peaks.end() - static_cast<std::ptrdiff_t>(cap)));
+    }
+    if (!(threshold > 0.0f)) return out;
+    for (int j = 0; j < img.height; ++j)
+        for (int i = 0; i < img.width; ++i) {
+            Rgb& p = out.clamped.px[static_cast<std::size_t>(j) * static_cast<std::size_t>(img.width) +
+                                    static_cast<std::size_t>(i)];
+            if (std::max({p.x, p.y, p.z}) <= threshold) continue;
+            out.excess.push_back({i, j, glm::max(p - Rgb(threshold), Rgb(0.0f))});
+            p = glm::min(p, Rgb(threshold));
+        }
+    return out;
+}
+
+// Adds the excess pixels' energy to the texels under them (see BrightSplit).
+void splatExcess(const std::vector<BrightSplit::Pixel>& pixels, int width, int height, CubeMap& cube) {
+    if (pixels.empty()) return;
+    const int n = cube.size();
+    // Sub-strata at most 1/4 of the narrowest texel's width, (2/N)/3.
+    const double texel = (2.0 / n) / 3.0;
+    const int su = std::max(1, static_cast<int>(std::ceil(4.0 * (2.0 * kPi / width) / texel)));
+    const int sv = std::max(1, static_cast<int>(std::ceil(4.0 * (kPi / height) / texel)));
+    using Energy = std::vector<std::pair<std::uint64_t, glm::dvec3>>;
+    const int chunks = std::min(static_cast<int>(pixels.size()), 64);
+    std::vector<Energy> parts(static_cast<std::size_t>(chunks));
+    parallelFor(0, chunks, [&](int c) {
+        std::map<std::uint64_t, glm::dvec3> acc;
+        // Neighbouring sub-strata mostly share a texel: sum runs before touching the map.
+        std::uint64_t runKey = std::numeric_limits<std::uint64_t>::max();
+        glm::dvec3 run(0.0);
+        const std::size_t begin = pixels.size() * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks);
+        const std::size_t end = pixels.size() * static_cast<std::size_t>(c + 1) / static_cast<std::size_t>(chunks);
+        for (std::size_t k = begin; k < end; ++k) {
+            const BrightSplit::Pixel& p = pixels[k];
+            const double dphi = 2.0 * kPi / (static_cast<double>(width) * su);
+            for (int b = 0; b < sv; ++b) {
+                const double t0 = kPi * (p.j + static_cast<double>(b) / sv) / height;
+                const double t1 = kPi * (p.j + static_cast<double>(b + 1) / sv) / height;
+                const double w = dphi * (std::cos(t0) - std::cos(t1));
+                const double theta = 0.5 * (t0 + t1);
+                for (int a = 0; a < su; ++a) {
+                    const double phi = 2.0 * kPi * ((p.i + (a + 0.5) / su) / width - 0.5);
+                    const glm::vec3 dir(static_cast<float>(std::sin(theta) * std::cos(phi)),
+                                        static_cast<float>(std::cos(theta)),
+                                        static_cast<float>(std::sin(theta) * std::sin(phi)));
+                    const FaceCoord fc = directionToFace(dir);
+                    const int tx = std::clamp(static_cast<int>(std::floor(fc.s * static_cast<float>(n))), 0, n - 1);
+                    const int ty = std::clamp(static_cast<int>(std::floor(fc.t * static_cast<float>(n))), 0, n - 1);
+                    const std::uint64_t key = (static_cast<std::uint64_t>(fc.face) * static_cast<std::uint64_t>(n) +
+                                               static_cast<std::uint64_t>(ty)) * static_cast<std::uint64_t>(n) +
+                                              static_cast<std::uint64_t>(tx);
+                    if (key != runKey) {
+                        if (runKey != std::numeric_limits<std::uint64_t>::max()) acc[runKey] += run;
+                        runKey = key;
+                        run = glm::dvec3(0.0);
+                    }
+                    run += w * glm::dvec3(p.excess);
+                }
+            }
+        }
+        if (runKey != std::numeric_limits<std::uint64_t>::max()) acc[runKey] += run;
+        parts[static_cast<std::size_t>(c)].assign(acc.begin(), acc.end());
+    });
+    const std::uint64_t un = static_cast<std::uint64_t>(n);
+    for (const Energy& part : parts)
+        for (const auto& [key, energy] : part) {
+            const int x = static_cast<int>(key % un), y = static_cast<int>((key / un) % un);
+            const Face f = kAllFaces[static_cast<std::size_t>(key / (un * un))];
+            cube.at(f, x, y) += Rgb(energy / texelSolidAngle(x, y, n));
+        }
+}
+
 CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress, float p0, float p1) {
-    const LatLongSampler ll(img, faceSize);
+    const BrightSplit split = splitBright(img);
+    const LatLongSampler ll(split.clamped, faceSize);
     CubeMap cube(faceSize);
     const int rowsTotal = 6 * faceSize;
     // Chunks so that progress is reported from the calling thread only.
@@ -688,6 +806,7 @@ CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress
         });
         if (progress) progress(p0 + (p1 - p0) * static_cast<float>(c + 1) / static_cast<float>(chunks));
     }
+    splatExcess(split.excess, img.width, img.height, cube);
     return cube;
 }
 
@@ -752,7 +871,7 @@ ImportedEnvironment loadDirectory(const fs::path& dir, const ImportOptions& opti
         return a.first.family < b.first.family;
     });
     const auto& [name, set] = groups.front();
-    if (set.found < 6) throwMissingFaces(dir, set, name);
+    if (set.found < 6) throwMissingFaces(dir, set, name, options.handedness);
     ImportReport report;
     int complete = 0;
     for (const auto& g : groups) complete += g.second.found == 6 ? 1 : 0;
@@ -788,7 +907,7 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
         std::stable_sort(partial.begin(), partial.end(),
                          [](const auto& a, const auto& b) { return a.second.found > b.second.found; });
         if (!partial.empty() && (partial.front().second.found > 1 || options.layout == EnvLayout::Faces))
-            throwMissingFaces(path, partial.front().second, partial.front().first);
+            throwMissingFaces(path, partial.front().second, partial.front().first, options.handedness);
         if (options.layout == EnvLayout::Faces)
             throw EnvError(path, "the name does not belong to a face-naming family "
                                  "(px/nx/…, posx/negx/…, right/left/top/bottom/front/back, "
@@ -913,8 +1032,10 @@ constexpr const char* kOrientationNote =
     "Faces stacked top to bottom in the order +X -X +Y -Y +Z -Z, y up, oriented as OpenEXR's "
     "ImfEnvmap CubeMap (the OpenGL cube-map faces with +-X and +-Z mirrored left-right and +-Y "
     "flipped top to bottom). Texel centres follow OpenGL: pixel i of an N-pixel face edge sits at "
-    "(i + 0.5)/N across the face, not at i/(N - 1) as ImfEnvmap's CubeMap::direction assumes. Mip "
-    "levels below the 1x1 faces (1x3, 1x1) are filler holding the mean colour.";
+    "(i + 0.5)/N across the face, not at i/(N - 1) as ImfEnvmap's CubeMap::direction assumes. The "
+    "first mipgloss:levels MIP levels are the exported chain; further levels down to 1x6 are 2x2 "
+    "box averages of the last, and the 1x3 and 1x1 levels that OpenEXR's rounding adds hold the "
+    "mean colour.";
 
 }  // namespace
 
@@ -969,10 +1090,9 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
     Rgb mean(0.0f);
     for (Face f : kAllFaces) mean += cubes.back().at(f, 0, 0) / 6.0f;
 
-    auto out = OIIO::ImageOutput::create(file.string());
+    // OpenEXR whatever the extension: the envmap attribute is OpenEXR's.
+    auto out = OIIO::ImageOutput::create("openexr");
     if (!out) throw EnvError(file, "cannot create an OpenEXR writer: " + OIIO::geterror());
-    if (!out->supports("mipmap") || !out->supports("tiles"))
-        throw EnvError(file, "the file extension does not name a format with tiled MIP maps (use .exr)");
     OIIO::ImageSpec spec(n, 6 * n, 3, OIIO::TypeDesc::FLOAT);
     const int tile = std::min(64, n);  // OpenEXR wants one tile size for every level
     spec.tile_width = tile;

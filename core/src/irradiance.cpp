@@ -7,9 +7,9 @@
 namespace mipgloss {
 
 namespace {
-// Texels of the source are at most 1/2 of an output texel at the default 32/64 sizes, far below
+// Source texels (32² faces, 2.8° at the face centre) are far below
 // the cosine lobe's width (σ ≈ 0.7 rad): the point approximation of the pyramid costs < 1e-4.
-constexpr int kMaxSourceSize = 64;
+constexpr int kMaxSourceSize = 32;
 constexpr double kIrradianceCutoff = 1e-7;
 }  // namespace
 

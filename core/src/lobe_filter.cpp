@@ -141,61 +141,92 @@ float halfSquaredDistance(const glm::vec3& a, const glm::vec3& b) {
     return 0.5f * glm::dot(d, d);
 }
 
+// Output texels are processed in tiles of kTile×kTile: the node walk runs once per tile with the
+// cap widened by the tile's own angular radius, and each texel then tests the collected nodes'
+// cones against its own cap (one dot product each) before touching their texels.
+constexpr int kTile = 4;
+
 template <bool kSeparateGeometry>
-void convolveRows(const LobeSource& src, const WeightTable& table, float cosA, float sinA,
-                  CubeMap& out, int row) {
+void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, CubeMap& out, int tile) {
     const int m = out.size();
-    const Face fo = static_cast<Face>(row / m);
-    const int y = row % m;
+    const int tilesPerSide = (m + kTile - 1) / kTile;
+    const Face fo = static_cast<Face>(tile / (tilesPerSide * tilesPerSide));
+    const int local = tile % (tilesPerSide * tilesPerSide);
+    const int x0 = (local % tilesPerSide) * kTile, y0 = (local / tilesPerSide) * kTile;
+    const int x1 = std::min(m, x0 + kTile), y1 = std::min(m, y0 + kTile);
+    const float invM = 1.0f / static_cast<float>(m);
+    const glm::vec3 centre = faceToDirection(fo, 0.5f * static_cast<float>(x0 + x1) * invM,
+                                             0.5f * static_cast<float>(y0 + y1) * invM);
+    float tileRadius = 0.0f;
+    for (int cy : {y0, y1})
+        for (int cx : {x0, x1})
+            tileRadius = std::max(tileRadius, angleBetween(centre, faceToDirection(fo, static_cast<float>(cx) * invM,
+                                                                                 static_cast<float>(cy) * invM)));
+    const float wide = std::min(alpha + tileRadius + 1e-4f, 3.1415926f);
+    thread_local std::vector<int> nodes;
+    nodes.clear();
+    const NodeGrid& grid = src.grid;
+    const int perFace = grid.nodes * grid.nodes;
+    forEachNodeInCap(grid, centre, std::cos(wide), std::sin(wide), [&](Face f, int nx, int ny) {
+        nodes.push_back(static_cast<int>(f) * perFace + ny * grid.nodes + nx);
+    });
+    const float cosA = std::cos(alpha), sinA = std::sin(alpha);
     const int size = src.size;
-    const int group = src.grid.group;
+    const int group = grid.group;
     const float xmax = table.xmax();
-    for (int x = 0; x < m; ++x) {
-        const glm::vec3 r = texelDirection(fo, x, y, m);
-        std::array<glm::vec3, 6> rl;
-        for (Face f : kAllFaces) rl[static_cast<std::size_t>(f)] = toLocal(r, f);
-        glm::dvec3 acc(0.0);
-        double wsum = 0.0;
-        forEachNodeInCap(src.grid, r, cosA, sinA, [&](Face f, int nx, int ny) {
-            const std::size_t fi = static_cast<std::size_t>(f);
-            const glm::vec3 rf = rl[fi];
-            const auto& energy = src.energy[fi];
-            glm::vec3 faccE(0.0f);
-            float fw = 0.0f;
-            for (int j = 0; j < group; ++j) {
-                const std::size_t rowStart = static_cast<std::size_t>(ny * group + j) * size +
-                                             static_cast<std::size_t>(nx * group);
-                for (int i = 0; i < group; ++i) {
-                    const std::size_t k = rowStart + static_cast<std::size_t>(i);
-                    const float xg = halfSquaredDistance(rf, src.geoDir[k]);
-                    if constexpr (kSeparateGeometry) {
-                        const float xe = halfSquaredDistance(rf, src.energyDir[fi][k]);
-                        if (xe < xmax) faccE += table(xe) * energy[k];
-                        if (xg < xmax) fw += table(xg) * src.omega[k];
-                    } else {
-                        if (xg < xmax) {
-                            const float w = table(xg);
-                            faccE += w * energy[k];
-                            fw += w * src.omega[k];
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            const glm::vec3 r = texelDirection(fo, x, y, m);
+            std::array<glm::vec3, 6> rl;
+            for (Face f : kAllFaces) rl[static_cast<std::size_t>(f)] = toLocal(r, f);
+            glm::dvec3 acc(0.0);
+            double wsum = 0.0;
+            for (const int id : nodes) {
+                const int nodeLocal = id % perFace;
+                const float threshold = cosA * grid.cosRadius[static_cast<std::size_t>(nodeLocal)] -
+                                        sinA * grid.sinRadius[static_cast<std::size_t>(nodeLocal)];
+                if (glm::dot(r, grid.axis[static_cast<std::size_t>(id)]) < threshold) continue;
+                const std::size_t fi = static_cast<std::size_t>(id / perFace);
+                const int nx = nodeLocal % grid.nodes, ny = nodeLocal / grid.nodes;
+                const glm::vec3 rf = rl[fi];
+                const auto& energy = src.energy[fi];
+                glm::vec3 faccE(0.0f);
+                float fw = 0.0f;
+                for (int j = 0; j < group; ++j) {
+                    const std::size_t rowStart = static_cast<std::size_t>(ny * group + j) * size +
+                                                 static_cast<std::size_t>(nx * group);
+                    for (int i = 0; i < group; ++i) {
+                        const std::size_t k = rowStart + static_cast<std::size_t>(i);
+                        const float xg = halfSquaredDistance(rf, src.geoDir[k]);
+                        if constexpr (kSeparateGeometry) {
+                            const float xe = halfSquaredDistance(rf, src.energyDir[fi][k]);
+                            if (xe < xmax) faccE += table(xe) * energy[k];
+                            if (xg < xmax) fw += table(xg) * src.omega[k];
+                        } else {
+                            if (xg < xmax) {
+                                const float w = table(xg);
+                                faccE += w * energy[k];
+                                fw += w * src.omega[k];
+                            }
                         }
                     }
                 }
+                acc += glm::dvec3(faccE);
+                wsum += static_cast<double>(fw);
             }
-            acc += glm::dvec3(faccE);
-            wsum += static_cast<double>(fw);
-        });
-        Rgb value;
-        if (wsum > 0.0) {
-            value = Rgb(acc / wsum);
-        } else {
-            // The lobe is narrower than the source texels around r: its limit is the texel holding r.
-            const FaceCoord c = directionToFace(r);
-            const int sx = std::clamp(static_cast<int>(c.s * static_cast<float>(size)), 0, size - 1);
-            const int sy = std::clamp(static_cast<int>(c.t * static_cast<float>(size)), 0, size - 1);
-            const std::size_t k = static_cast<std::size_t>(sy) * size + static_cast<std::size_t>(sx);
-            value = src.energy[static_cast<std::size_t>(c.face)][k] / src.omega[k];
+            Rgb value;
+            if (wsum > 0.0) {
+                value = Rgb(acc / wsum);
+            } else {
+                // The lobe is narrower than the source texels around r: its limit is the texel holding r.
+                const FaceCoord c = directionToFace(r);
+                const int sx = std::clamp(static_cast<int>(c.s * static_cast<float>(size)), 0, size - 1);
+                const int sy = std::clamp(static_cast<int>(c.t * static_cast<float>(size)), 0, size - 1);
+                const std::size_t k = static_cast<std::size_t>(sy) * size + static_cast<std::size_t>(sx);
+                value = src.energy[static_cast<std::size_t>(c.face)][k] / src.omega[k];
+            }
+            out.at(fo, x, y) = value;
         }
-        out.at(fo, x, y) = value;
     }
 }
 
@@ -338,15 +369,15 @@ CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cut
     // 1 - cmin without cancellation for huge exponents.
     const double xmax = exponent <= 0.0 ? 1.0 : -std::expm1(std::log(cutoff) / exponent);
     const WeightTable table(exponent, xmax);
-    const float cosA = static_cast<float>(cmin);
-    const float sinA = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - cmin * cmin)));
+    const float alpha = static_cast<float>(std::acos(cmin));
     CubeMap out(outSize);
     const bool separate = !src.energyDir[0].empty();
-    parallelFor(0, 6 * outSize, [&](int row) {
+    const int tilesPerSide = (outSize + kTile - 1) / kTile;
+    parallelFor(0, 6 * tilesPerSide * tilesPerSide, [&](int tile) {
         if (separate)
-            convolveRows<true>(src, table, cosA, sinA, out, row);
+            convolveTile<true>(src, table, alpha, out, tile);
         else
-            convolveRows<false>(src, table, cosA, sinA, out, row);
+            convolveTile<false>(src, table, alpha, out, tile);
     });
     out.makeSeamless();
     return out;
