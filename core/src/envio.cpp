@@ -813,10 +813,7 @@ CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress
 // ---------------------------------------------------------------------------------------------
 
 ImportedEnvironment finish(CubeMap cube, ImportReport report, int faceSize, const ProgressFn& progress) {
-    if (faceSize > 0 && faceSize != cube.size()) {
-        cube.makeSeamless();
-        cube = resampleCube(cube, faceSize);
-    }
+    if (faceSize > 0 && faceSize != cube.size()) cube = resampleCube(cube, faceSize);
     cube.makeSeamless();
     if (progress) progress(1.0f);
     return {std::move(cube), std::move(report)};
@@ -910,7 +907,7 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
             throwMissingFaces(path, partial.front().second, partial.front().first, options.handedness);
         if (options.layout == EnvLayout::Faces)
             throw EnvError(path, "the name does not belong to a face-naming family "
-                                 "(px/nx/…, posx/negx/…, right/left/top/bottom/front/back, "
+                                 "(px/nx/..., posx/negx/..., right/left/top/bottom/front/back, "
                                  "rt/lf/up/dn/ft/bk)");
     }
 
@@ -1033,9 +1030,9 @@ constexpr const char* kOrientationNote =
     "ImfEnvmap CubeMap (the OpenGL cube-map faces with +-X and +-Z mirrored left-right and +-Y "
     "flipped top to bottom). Texel centres follow OpenGL: pixel i of an N-pixel face edge sits at "
     "(i + 0.5)/N across the face, not at i/(N - 1) as ImfEnvmap's CubeMap::direction assumes. The "
-    "first mipgloss:levels MIP levels are the exported chain; further levels down to 1x6 are 2x2 "
-    "box averages of the last, and the 1x3 and 1x1 levels that OpenEXR's rounding adds hold the "
-    "mean colour.";
+    "first mipgloss:levels MIP levels are the exported chain; further levels down to 1x1 faces are "
+    "2x2 box averages of the last; rows below the six faces (non-power-of-two sizes) and the "
+    "levels OpenEXR's rounding adds below the 1x1 faces (1x3, 1x1) hold the mean colour.";
 
 }  // namespace
 

@@ -4,6 +4,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <unistd.h>
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -32,7 +34,8 @@ public:
     TempDir() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         path_ = fs::temp_directory_path() /
-                ("mipgloss_envio_" + std::string(info->test_suite_name()) + "_" + info->name());
+                ("mipgloss_envio_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
+                 info->name());
         fs::remove_all(path_);
         fs::create_directories(path_);
     }
@@ -694,32 +697,37 @@ MipChain markerChain(int base, int levels) {
 
 TEST(CubeEnvExport, ThreeLevelChainRoundTripsExactly) {
     TempDir dir;
-    const MipChain chain = markerChain(4, 3);
-    const fs::path file = dir / "env.exr";
-    writeCubeEnvironmentExr(chain, file);
+    // Base 4: levels 4, 2, 1. Base 6 (not a power of two): 6, 3, 1, where OpenEXR's levels are
+    // 6x36, 3x18, 1x9 (faces in the top six rows), 1x4, 1x2, 1x1.
+    struct Case { int base, fileLevels; };
+    for (const Case c : {Case{4, 5}, Case{6, 6}}) {
+        const MipChain chain = markerChain(c.base, 3);
+        const fs::path file = dir / ("env" + std::to_string(c.base) + ".exr");
+        writeCubeEnvironmentExr(chain, file);
 
-    auto in = OIIO::ImageInput::open(file.string());
-    ASSERT_TRUE(in);
-    EXPECT_EQ(in->spec().width, 4);
-    EXPECT_EQ(in->spec().height, 24);
-    EXPECT_GT(in->spec().tile_width, 0);
-    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
-    // OpenImageIO reports OpenEXR's envmap = cube as this texture format.
-    EXPECT_EQ(in->spec().get_string_attribute("textureformat"), "CubeFace Environment");
-    EXPECT_FALSE(in->spec().get_string_attribute("mipgloss:orientation").empty());
-    // OpenEXR halves N × 6N down to 1 × 1: 4x24, 2x12, 1x6 (the chain), then 1x3 and 1x1.
-    int levels = 0;
-    while (in->seek_subimage(0, levels)) ++levels;
-    EXPECT_EQ(levels, 5);
-    in->close();
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().width, c.base);
+        EXPECT_EQ(in->spec().height, 6 * c.base);
+        EXPECT_GT(in->spec().tile_width, 0);
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
+        // OpenImageIO reports OpenEXR's envmap = cube as this texture format.
+        EXPECT_EQ(in->spec().get_string_attribute("textureformat"), "CubeFace Environment");
+        EXPECT_FALSE(in->spec().get_string_attribute("mipgloss:orientation").empty());
+        // OpenEXR halves N x 6N down to 1x1: for base 4, 4x24, 2x12, 1x6 (the chain), 1x3, 1x1.
+        int levels = 0;
+        while (in->seek_subimage(0, levels)) ++levels;
+        EXPECT_EQ(levels, c.fileLevels) << "base " << c.base;
+        in->close();
 
-    const MipChain back = readCubeEnvironmentExr(file);
-    ASSERT_EQ(back.levelCount(), 3);
-    for (int k = 0; k < 3; ++k)
-        for (Face f : kAllFaces)
-            EXPECT_EQ(back.levels[static_cast<std::size_t>(k)].faceStorage(f),
-                      chain.levels[static_cast<std::size_t>(k)].faceStorage(f))
-                << "level " << k << " face " << faceName(f);
+        const MipChain back = readCubeEnvironmentExr(file);
+        ASSERT_EQ(back.levelCount(), 3);
+        for (int k = 0; k < 3; ++k)
+            for (Face f : kAllFaces)
+                EXPECT_EQ(back.levels[static_cast<std::size_t>(k)].faceStorage(f),
+                          chain.levels[static_cast<std::size_t>(k)].faceStorage(f))
+                    << "base " << c.base << " level " << k << " face " << faceName(f);
+    }
 }
 
 TEST(CubeEnvExport, FacesFollowOpenExrCubeMapOrientation) {

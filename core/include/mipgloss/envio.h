@@ -146,7 +146,10 @@ void writeFaceImages(const CubeMap& cube, const std::filesystem::path& dir);
 // centred on the cube's edges); resampling to that would cost exact round trips.
 // OpenEXR's MIP levels halve N × 6N down to 1 × 1, so the file has 1 + floor(log2 6N) levels:
 // the chain's levels first ("mipgloss:levels" says how many), 2×2 box averages down to 1 × 6 if
-// the chain stops early, then 1 × 3 and 1 × 1 holding the mean colour. "oiio:updirection" = "y"
+// the chain stops early, then the levels below the 1×1 faces (1 × 3 and 1 × 1 for a power-of-two
+// N) holding the mean colour, as do the rows below the faces when N is not a power of two (level
+// k is N >> k wide and 6N >> k high, faces stacked from the top: ImfEnvmap's sizeOfFace
+// = min(w, h / 6)). "oiio:updirection" = "y"
 // is set, but OpenImageIO's OpenEXR writer drops oiio:* attributes; "mipgloss:orientation" says
 // y is up.
 void writeCubeEnvironmentExr(const MipChain& chain, const std::filesystem::path& file);
