@@ -221,48 +221,49 @@ MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options) {
     return chain;
 }
 
-MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
+namespace {
+
+// The chain shape shared by the convolution builders: level 0 is the base, each level the scene
+// can reach is `filterLevel(k)`, and levels beyond BuildOptions::lastFilteredLevel get a cheap box
+// step from the level before.
+template <class FilterLevel>
+MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, FilterLevel&& filterLevel) {
     const Progress progress(options);
     const int n = base.size();
     const int levels = fullChainLevelCount(n);
-    // The pyramid needs exact 2×2 nesting; a non-power-of-two base coarsens only as far as its
-    // size stays even, and deeper levels then filter that (finer, slower, exact) source.
-    const int deepestSource = powerOfTwoFactor(n);
-    std::vector<detail::LobeSource> sources;
-    sources.push_back(detail::baseSource(base));
     MipChain chain;
     chain.levels.push_back(seamlessCopy(base));
     for (int k = 1; k < levels; ++k) {
         progress.report(static_cast<float>(k - 1) / static_cast<float>(levels - 1));
-        if (!filtered(options, k)) {
-            chain.levels.push_back(boxDownsample(chain.levels.back(), levelSize(n, k)));
-            continue;
-        }
-        const int s = std::min({std::max(0, k - kFinerLevels), deepestSource, k});
-        while (static_cast<int>(sources.size()) <= s) sources.push_back(detail::coarsenSource(sources.back()));
-        chain.levels.push_back(detail::convolve(sources[static_cast<std::size_t>(s)],
-                                                lambdaToExponent(k, n), levelSize(n, k), kPhongCutoff));
+        chain.levels.push_back(filtered(options, k) ? filterLevel(k)
+                                                    : boxDownsample(chain.levels.back(), levelSize(n, k)));
     }
     progress.report(1.0f);
     return chain;
 }
 
-MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options) {
-    const Progress progress(options);
+}  // namespace
+
+MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
     const int n = base.size();
-    const int levels = fullChainLevelCount(n);
-    MipChain chain;
-    chain.levels.push_back(seamlessCopy(base));
-    for (int k = 1; k < levels; ++k) {
-        progress.report(static_cast<float>(k - 1) / static_cast<float>(levels - 1));
-        if (!filtered(options, k)) {
-            chain.levels.push_back(boxDownsample(chain.levels.back(), levelSize(n, k)));
-            continue;
-        }
-        chain.levels.push_back(referenceConvolution(base, lambdaToExponent(k, n), levelSize(n, k)));
-    }
-    progress.report(1.0f);
-    return chain;
+    // The pyramid needs exact 2×2 nesting; a non-power-of-two base coarsens only as far as its
+    // size stays even, and deeper levels then filter that (finer, slower, exact) source.
+    const int deepestSource = powerOfTwoFactor(n);
+    std::vector<detail::LobeSource> sources;
+    sources.push_back(detail::baseSource(base));
+    return buildConvolvedChain(base, options, [&](int k) {
+        const int s = std::min({std::max(0, k - kFinerLevels), deepestSource, k});
+        while (static_cast<int>(sources.size()) <= s) sources.push_back(detail::coarsenSource(sources.back()));
+        return detail::convolve(sources[static_cast<std::size_t>(s)], lambdaToExponent(k, n), levelSize(n, k),
+                                kPhongCutoff);
+    });
+}
+
+MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options) {
+    const int n = base.size();
+    return buildConvolvedChain(base, options, [&](int k) {
+        return referenceConvolution(base, lambdaToExponent(k, n), levelSize(n, k));
+    });
 }
 
 CubeMap referenceConvolution(const CubeMap& base, double exponent, int outSize, double cutoff) {
