@@ -1,4 +1,4 @@
-// The `mipgloss` command line: bake, bench. Thin: everything it does lives in mipgloss::core.
+// The `mipgloss` command line: bake, bench, and (with the UI) render, bench-render. Thin: everything it does lives in mipgloss::core.
 #include "mipgloss/bake.h"
 #include "mipgloss/builders.h"
 #include "mipgloss/default_env.h"
@@ -6,6 +6,10 @@
 #include "mipgloss/irradiance.h"
 #include "mipgloss/metrics.h"
 #include "mipgloss/phong.h"
+
+#ifdef MIPGLOSS_WITH_UI
+#include "render_command.h"
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -267,6 +271,9 @@ int main(int argc, char** argv) {
         const std::string cmd = argv[1];
         if (cmd == "--help" || cmd == "-h" || cmd == "help") {
             std::cout << kUsage;
+#ifdef MIPGLOSS_WITH_UI
+            std::cout << app::kRenderUsage;
+#endif
             return 0;
         }
         if (cmd == "--version") {
@@ -275,6 +282,11 @@ int main(int argc, char** argv) {
         }
         if (cmd == "bake") return runBake(Args(argc, argv, 2));
         if (cmd == "bench") return runBench(Args(argc, argv, 2));
+#ifdef MIPGLOSS_WITH_UI
+        const std::vector<std::string> rest(argv + 2, argv + argc);
+        if (cmd == "render") return app::runRender(rest, argv[0]);
+        if (cmd == "bench-render") return app::runRenderBench(rest, argv[0]);
+#endif
         throw UsageError("unknown command '" + cmd + "'");
     } catch (const UsageError& e) {
         std::cerr << "mipgloss: " << e.what() << "\n(see mipgloss --help)\n";

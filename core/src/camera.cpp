@@ -1,0 +1,85 @@
+#include "mipgloss/camera.h"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mipgloss {
+
+namespace {
+constexpr float kMaxPitch = 89.0f;
+
+// Unit vector from the target toward the camera.
+glm::vec3 viewBack(float yawDegrees, float pitchDegrees) {
+    const float yaw = glm::radians(yawDegrees);
+    const float pitch = glm::radians(pitchDegrees);
+    return {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
+}
+}  // namespace
+
+glm::vec3 OrbitCamera::position() const {
+    return target + distance * viewBack(yawDegrees, pitchDegrees);
+}
+
+glm::mat4 OrbitCamera::view() const {
+    return glm::lookAt(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+glm::mat4 OrbitCamera::projection(float aspect, float sceneRadius) const {
+    // Depth range: from just in front of the scene's near side to past its far side, with the
+    // near plane never closer than 1/1000 of the distance (24-bit depth keeps ~10 bits there).
+    const float radius = std::max(sceneRadius, 1e-6f);
+    const float nearPlane = std::max(distance - 2.0f * radius, distance * 1e-3f);
+    const float farPlane = distance + 2.0f * radius + nearPlane;
+    return glm::perspective(glm::radians(fovYDegrees), std::max(aspect, 1e-3f), nearPlane, farPlane);
+}
+
+void OrbitCamera::orbit(float dYawDegrees, float dPitchDegrees) {
+    yawDegrees = std::fmod(yawDegrees + dYawDegrees, 360.0f);
+    pitchDegrees = std::clamp(pitchDegrees + dPitchDegrees, -kMaxPitch, kMaxPitch);
+}
+
+void OrbitCamera::pan(float dxViewHeights, float dyViewHeights) {
+    // One view height at the target's distance, so the point under the cursor follows it.
+    const float viewHeight = 2.0f * distance * std::tan(glm::radians(fovYDegrees) * 0.5f);
+    const glm::vec3 back = viewBack(yawDegrees, pitchDegrees);
+    const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), back));
+    const glm::vec3 up = glm::cross(back, right);
+    target += viewHeight * (-dxViewHeights * right + dyViewHeights * up);
+}
+
+void OrbitCamera::zoom(float factor) {
+    if (!(factor > 0.0f) || !std::isfinite(factor)) return;
+    distance = std::clamp(distance * factor, 1e-6f, 1e9f);
+}
+
+void OrbitCamera::frame(const Bounds& bounds, float aspect, float margin) {
+    const float radius = std::max(bounds.radius(), 1e-6f);
+    const float halfY = glm::radians(fovYDegrees) * 0.5f;
+    const float halfX = std::atan(std::tan(halfY) * std::max(aspect, 1e-3f));
+    // A sphere of radius r fits a cone of half-angle a when seen from r / sin(a).
+    target = bounds.centre();
+    distance = margin * radius / std::sin(std::min(halfX, halfY));
+}
+
+Frustum Frustum::fromViewProjection(const glm::mat4& m) {
+    // Rows of the matrix (glm is column-major: m[col][row]).
+    auto row = [&](int r) { return glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+    const glm::vec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+    Frustum f;
+    f.planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
+    for (glm::vec4& p : f.planes) p /= glm::length(glm::vec3(p));
+    return f;
+}
+
+bool Frustum::intersectsSphere(const glm::vec3& centre, float radius) const {
+    for (const glm::vec4& p : planes)
+        if (glm::dot(glm::vec3(p), centre) + p.w < -radius) return false;
+    return true;
+}
+
+}  // namespace mipgloss

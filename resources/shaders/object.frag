@@ -1,0 +1,41 @@
+#version 410 core
+// One environment lookup per fragment (Ashikhmin & Ghosh 2002, §4). The material's λ is not used
+// here in the paper's path: it is the bound sampler's GL_TEXTURE_MIN_LOD, so texture() samples at
+// max(λ, footprint LOD) with trilinear filtering between levels.
+in vec3 vWorldPosition;
+in vec3 vNormal;
+
+uniform samplerCube uEnvironment;  // unit 0: the chain, sampler with MIN_LOD = λ
+uniform samplerCube uIrradiance;   // unit 1: E/π, used by normal mode when asked
+uniform vec3 uCameraPosition;
+uniform mat3 uEnvironmentRotation;  // world direction -> environment direction
+uniform vec3 uTint;
+uniform int uLookup;       // 0 reflection vector, 1 normal, 2 normal into the irradiance map
+uniform bool uSharperAtGrazing;
+uniform float uLambda;     // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
+
+layout(location = 0) out vec4 fragColour;
+
+void main() {
+    vec3 n = normalize(vNormal);
+    vec3 v = normalize(uCameraPosition - vWorldPosition);
+    // Open meshes (the teapot's lid gap) show their inside: light it with the inward normal.
+    if (!gl_FrontFacing) n = -n;
+    vec3 direction = uEnvironmentRotation * (uLookup == 0 ? reflect(-v, n) : n);
+
+    vec3 colour;
+    if (uLookup == 2) {
+        colour = texture(uIrradiance, direction).rgb;
+    } else if (uSharperAtGrazing) {
+        // λ falls to 0 as the view grazes the surface, with Schlick's (1 - cos θ)^5 weight: the
+        // paper's §6 wish that glossy reflections sharpen at grazing angles. The footprint LOD
+        // of the hardware is kept, so far objects still get mipmapping's blur.
+        float cosTheta = clamp(dot(n, v), 0.0, 1.0);
+        float lambda = uLambda * (1.0 - pow(1.0 - cosTheta, 5.0));
+        float footprint = textureQueryLod(uEnvironment, direction).y;
+        colour = textureLod(uEnvironment, direction, max(lambda, footprint)).rgb;
+    } else {
+        colour = texture(uEnvironment, direction).rgb;
+    }
+    fragColour = vec4(uTint * colour, 1.0);
+}

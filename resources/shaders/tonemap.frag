@@ -1,0 +1,22 @@
+#version 410 core
+// Linear HDR -> display: exposure, a tone map, then the exact sRGB encoding (IEC 61966-2-1).
+uniform sampler2D uHdr;
+uniform float uExposure;  // 2^EV
+uniform int uToneMap;     // 0 linear (clipped), 1 Reinhard, 2 ACES (Narkowicz 2015 fit)
+
+layout(location = 0) out vec4 fragColour;
+
+vec3 toneMap(vec3 x) {
+    if (uToneMap == 1) return x / (1.0 + x);
+    if (uToneMap == 2) return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    return clamp(x, 0.0, 1.0);
+}
+
+vec3 srgbEncode(vec3 c) {
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+void main() {
+    vec3 hdr = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb;
+    fragColour = vec4(srgbEncode(toneMap(max(hdr, 0.0) * uExposure)), 1.0);
+}

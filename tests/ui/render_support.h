@@ -1,0 +1,124 @@
+// Shared by the render tests: an offscreen renderer per test binary, picture output on failure,
+// and the CPU side of the paper's lookup (the same direction, the same level, on the core's chain).
+#pragma once
+
+#include "mipgloss/camera.h"
+#include "mipgloss/cubemap.h"
+#include "mipgloss/environment.h"
+#include "mipgloss/scene.h"
+#include "mipgloss/ui/offscreen.h"
+
+#include <QImage>
+#include <QString>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mipgloss::test {
+
+inline std::filesystem::path outputDir() {
+    std::filesystem::path dir = MIPGLOSS_TEST_OUTPUT_DIR;
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// One context for the whole binary (llvmpipe contexts are cheap, but shader compiles are not).
+inline ui::OffscreenRenderer* sharedRenderer(std::string* error = nullptr) {
+    static std::unique_ptr<ui::OffscreenRenderer> renderer;
+    static std::string failure;
+    static bool tried = false;
+    if (!tried) {
+        tried = true;
+        auto r = std::make_unique<ui::OffscreenRenderer>();
+        if (r->initialize(&failure)) renderer = std::move(r);
+    }
+    if (error) *error = failure;
+    return renderer.get();
+}
+
+// Linear HDR pixels (bottom row first) -> an 8-bit picture for humans: clipped, sRGB-encoded.
+inline QImage hdrToImage(const std::vector<glm::vec4>& hdr, int width, int height, float scale = 1.0f) {
+    QImage image(width, height, QImage::Format_RGB32);
+    auto encode = [](float c) {
+        c = std::clamp(c, 0.0f, 1.0f);
+        c = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+        return static_cast<int>(std::lround(c * 255.0f));
+    };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec4& p = hdr[static_cast<std::size_t>(y * width + x)];
+            image.setPixel(x, height - 1 - y, qRgb(encode(p.r * scale), encode(p.g * scale), encode(p.b * scale)));
+        }
+    return image;
+}
+
+// The camera ray through a pixel centre (x from the left, y from the bottom).
+struct Ray {
+    glm::vec3 origin, direction;
+};
+inline Ray pixelRay(const glm::mat4& inverseViewProjection, int x, int y, int width, int height) {
+    const float nx = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(width) - 1.0f;
+    const float ny = 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height) - 1.0f;
+    const glm::vec4 a = inverseViewProjection * glm::vec4(nx, ny, -1.0f, 1.0f);
+    const glm::vec4 b = inverseViewProjection * glm::vec4(nx, ny, 1.0f, 1.0f);
+    const glm::vec3 o = glm::vec3(a) / a.w;
+    return {o, glm::normalize(glm::vec3(b) / b.w - o)};
+}
+
+// Nearest hit of a ray with the unit sphere at the origin.
+inline std::optional<glm::vec3> hitUnitSphere(const Ray& ray) {
+    const float b = glm::dot(ray.origin, ray.direction);
+    const float c = glm::dot(ray.origin, ray.origin) - 1.0f;
+    const float disc = b * b - c;
+    if (disc <= 0.0f) return std::nullopt;
+    const float t = -b - std::sqrt(disc);
+    if (t <= 0.0f) return std::nullopt;
+    return ray.origin + t * ray.direction;
+}
+
+// The GL cube-map footprint LOD (OpenGL 4.5 §8.14.1, with §8.13's face coordinates) of a lookup
+// direction field, from its finite differences to the next pixel in x and y.
+inline float footprintLod(const glm::vec3& d, const glm::vec3& dx, const glm::vec3& dy, int faceSize) {
+    const FaceCoord c = directionToFace(d);
+    // Face coordinates of v on d's face (cubemap.h's table), as GL differentiates them.
+    auto onFace = [&](const glm::vec3& v) {
+        float sc = 0, tc = 0, ma = 1;
+        switch (c.face) {
+            case Face::PX: sc = -v.z; tc = -v.y; ma = v.x; break;
+            case Face::NX: sc = v.z; tc = -v.y; ma = -v.x; break;
+            case Face::PY: sc = v.x; tc = v.z; ma = v.y; break;
+            case Face::NY: sc = v.x; tc = -v.z; ma = -v.y; break;
+            case Face::PZ: sc = v.x; tc = -v.y; ma = v.z; break;
+            case Face::NZ: sc = -v.x; tc = -v.y; ma = -v.z; break;
+        }
+        return glm::vec2(0.5f * (sc / ma + 1.0f), 0.5f * (tc / ma + 1.0f));
+    };
+    const glm::vec2 st = onFace(d);
+    const glm::vec2 ddx = (onFace(dx) - st) * static_cast<float>(faceSize);
+    const glm::vec2 ddy = (onFace(dy) - st) * static_cast<float>(faceSize);
+    const float rho = std::max(glm::length(ddx), glm::length(ddy));
+    return std::log2(std::max(rho, 1e-30f));
+}
+
+// The paper's lookup on the CPU: trilinear between floor(lod) and the next level, each bilinear
+// across faces (the chain's borders stand for GL_TEXTURE_CUBE_MAP_SEAMLESS).
+inline Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, float lod) {
+    const float last = static_cast<float>(chain.levelCount() - 1);
+    lod = std::clamp(lod, 0.0f, last);
+    const int l0 = static_cast<int>(std::floor(lod));
+    const float f = lod - static_cast<float>(l0);
+    const Rgb a = chain.levels[static_cast<std::size_t>(l0)].sample(direction);
+    if (f <= 0.0f || l0 + 1 > static_cast<int>(last)) return a;
+    const Rgb b = chain.levels[static_cast<std::size_t>(l0 + 1)].sample(direction);
+    return a + f * (b - a);
+}
+
+}  // namespace mipgloss::test

@@ -1,0 +1,78 @@
+// Keeps the scene's environment ready: imports and builds off the UI thread (one worker, newest
+// request wins, older ones cancelled), while the previous environment stays current and usable.
+// It watches a SceneDocument and asks for exactly what the scene needs (environment.h): a change
+// of λ inside the filtered levels, of mode or of tint builds nothing.
+#pragma once
+
+#include "mipgloss/environment.h"
+
+#include <QObject>
+#include <QString>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+
+namespace mipgloss::ui {
+
+class SceneDocument;
+
+struct EnvironmentCounters {
+    std::uint64_t imports = 0;           // files (or the embedded default) read
+    std::uint64_t chainBuilds = 0;       // mip chains built
+    std::uint64_t irradianceBuilds = 0;  // irradiance maps computed
+    std::uint64_t failures = 0;
+};
+
+class EnvironmentManager : public QObject {
+    Q_OBJECT
+public:
+    explicit EnvironmentManager(QObject* parent = nullptr);
+    ~EnvironmentManager() override;  // cancels and waits for the worker
+
+    // Follows the document: environment settings and the scene's needs.
+    void watch(SceneDocument* document);
+
+    // Makes sure the environment satisfies (settings, needs); starts a job if it does not.
+    void request(const EnvironmentSettings& settings, const ChainNeeds& needs);
+
+    // The environment to draw with; null until the first one is ready. `version` increases with
+    // every new chain or irradiance map, so the renderer uploads only when it changes.
+    std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
+    std::uint64_t version() const { return version_; }
+
+    bool busy() const { return busy_; }
+    const EnvironmentCounters& counters() const { return counters_; }
+
+    // Blocks (processing events) until no job runs; for the command line and tests. False on
+    // timeout.
+    bool waitUntilIdle(int timeoutMs = 120000);
+
+signals:
+    void busyChanged(bool busy);
+    void progress(const QString& stage, double fraction);  // from the worker, queued to the UI
+    void environmentReady();                                // current() changed
+    // A file could not be used; `message` names it. The current environment is kept.
+    void failed(const QString& message);
+
+private:
+    void startJob();
+    void onJobFinished(std::uint64_t jobId, std::shared_ptr<PreparedEnvironment> result,
+                       const QString& error, bool chainBuilt, bool irradianceBuilt, bool imported);
+
+    SceneDocument* document_ = nullptr;
+    std::shared_ptr<const PreparedEnvironment> current_;
+    std::uint64_t version_ = 0;
+    EnvironmentSettings wantedSettings_;
+    ChainNeeds wantedNeeds_;
+    bool haveRequest_ = false;
+    bool busy_ = false;
+    std::uint64_t jobCounter_ = 0;
+    std::shared_ptr<std::atomic<bool>> cancelRunning_;
+    EnvironmentCounters counters_;
+    // Last request that failed, so the same bad file is not retried on every scene change.
+    EnvironmentSettings failedSettings_;
+    bool haveFailed_ = false;
+};
+
+}  // namespace mipgloss::ui

@@ -1,0 +1,45 @@
+// The same Renderer without a window: an OpenGL 4.1 core context on a QOffscreenSurface and a
+// framebuffer object. Needs a QGuiApplication and (with Qt 6.4 on Linux) an X display.
+#pragma once
+
+#include "mipgloss/camera.h"
+#include "mipgloss/ui/renderer.h"
+
+#include <QImage>
+
+#include <memory>
+#include <string>
+
+namespace mipgloss::ui {
+
+class OffscreenRenderer {
+public:
+    OffscreenRenderer();
+    ~OffscreenRenderer();
+
+    // Creates the context; false with `error` when no 4.1 core context can be made.
+    bool initialize(std::string* error);
+
+    // Renders `scene` (environment uploaded from `environment` if its version changed) and returns
+    // the tone-mapped sRGB picture.
+    QImage render(const Scene& scene, const OrbitCamera& camera,
+                  const std::shared_ptr<const PreparedEnvironment>& environment,
+                  std::uint64_t environmentVersion, int width, int height);
+
+    // The linear HDR colour of the last render (RGBA, bottom row first); see Renderer::readHdr.
+    std::vector<glm::vec4> lastHdr(int& width, int& height);
+
+    const RenderCounters& counters() const;
+    std::string glDescription() const;
+    // Blocks until the GPU has finished (for timing).
+    void finish();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// The camera that frames every visible object of the scene for an image of this aspect.
+OrbitCamera framingCamera(const Scene& scene, float aspect);
+
+}  // namespace mipgloss::ui

@@ -1,0 +1,56 @@
+// The edited scene, shared by the window's panels and the viewport. Setters emit their signal only
+// when the value changes (Qt's setX / xChanged habit), so two-way bindings are safe. The scene
+// itself stays a plain value (mipgloss::Scene); meshes are shared, never copied, by duplicates.
+#pragma once
+
+#include "mipgloss/scene.h"
+
+#include <QObject>
+#include <QString>
+
+namespace mipgloss::ui {
+
+class SceneDocument : public QObject {
+    Q_OBJECT
+public:
+    explicit SceneDocument(QObject* parent = nullptr);
+
+    const Scene& scene() const { return scene_; }
+    int objectCount() const { return static_cast<int>(scene_.objects.size()); }
+    const SceneObject& object(int index) const { return scene_.objects.at(static_cast<std::size_t>(index)); }
+    bool isValidIndex(int index) const { return index >= 0 && index < objectCount(); }
+
+    // Objects. addObject returns the new index and selects it.
+    int addObject(SceneObject object);
+    void removeObject(int index);
+    int duplicateObject(int index);  // placed beside the original, same mesh (shared) and material
+    void setMaterial(int index, const Material& material);
+    void setTransform(int index, const Transform& transform);
+    void setVisible(int index, bool visible);
+    void setName(int index, const QString& name);
+
+    void setEnvironment(const EnvironmentSettings& settings);
+    void setDisplay(const DisplaySettings& settings);
+
+    // Replaces everything (open scene, new scene).
+    void resetScene(Scene scene);
+
+    int selected() const { return selected_; }
+    void setSelected(int index);  // -1 clears
+
+signals:
+    void objectsChanged();                 // added, removed, reordered or reset
+    void objectChanged(int index);         // name, visibility
+    void materialChanged(int index);
+    void transformChanged(int index);
+    void environmentChanged();
+    void displayChanged();
+    void selectionChanged(int index);
+    void changed();                        // any of the above except selection
+
+private:
+    Scene scene_;
+    int selected_ = -1;
+};
+
+}  // namespace mipgloss::ui

@@ -1,0 +1,173 @@
+#include "mipgloss/ui/viewport.h"
+
+#include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/scene_document.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QPainter>
+#include <QWheelEvent>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace mipgloss::ui {
+
+Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QWidget* parent)
+    : QOpenGLWidget(parent), document_(document), environments_(environments),
+      renderer_(std::make_unique<Renderer>()) {
+    setFocusPolicy(Qt::StrongFocus);
+    setMinimumSize(320, 240);
+    // On demand: any change that can alter the picture asks for one frame.
+    connect(document_, &SceneDocument::changed, this, qOverload<>(&QWidget::update));
+    connect(environments_, &EnvironmentManager::environmentReady, this, qOverload<>(&QWidget::update));
+    connect(document_, &SceneDocument::objectsChanged, this, [this] {
+        if (document_->objectCount() > 0 && !framedOnce_) frameAll();
+    });
+}
+
+Viewport::~Viewport() { cleanup(); }
+
+const RenderCounters& Viewport::counters() const { return renderer_->counters(); }
+
+void Viewport::cleanup() {
+    if (!renderer_ || !renderer_->isInitialized()) return;
+    makeCurrent();
+    renderer_->destroy();
+    doneCurrent();
+}
+
+void Viewport::initializeGL() {
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::cleanup);
+    std::string error;
+    if (!renderer_->initialize(&error)) {
+        glError_ = QString::fromStdString(error);
+        emit glFailed(glError_);
+    }
+}
+
+void Viewport::resizeGL(int, int) {}
+
+void Viewport::paintGL() {
+    if (!renderer_->isInitialized()) return;
+    if (!framedOnce_ && document_->objectCount() > 0) frameAll();
+    renderer_->setEnvironment(environments_->current(), environments_->version());
+    const qreal ratio = devicePixelRatio();
+    const int w = static_cast<int>(std::lround(width() * ratio));
+    const int h = static_cast<int>(std::lround(height() * ratio));
+    renderer_->render(document_->scene(), camera_, w, h, defaultFramebufferObject());
+    if (showCounters_) {
+        const RenderCounters& c = renderer_->counters();
+        const EnvironmentCounters& e = environments_->counters();
+        QPainter painter(this);
+        painter.setPen(Qt::white);
+        painter.setFont(QFont(QStringLiteral("monospace"), 9));
+        const QString text =
+            QStringLiteral("frames %1  drawn %2  culled %3\nbuilds %4  irradiance %5  imports %6\n"
+                           "chain uploads %7  mesh uploads %8  samplers %9")
+                .arg(c.frames).arg(c.objectsDrawn).arg(c.objectsCulled)
+                .arg(e.chainBuilds).arg(e.irradianceBuilds).arg(e.imports)
+                .arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated);
+        painter.fillRect(QRect(6, 6, 330, 52), QColor(0, 0, 0, 140));
+        painter.drawText(QRect(12, 8, 320, 50), Qt::AlignLeft | Qt::AlignTop, text);
+    }
+    emit frameDrawn(renderer_->counters().frames);
+}
+
+void Viewport::frameAll() {
+    const float aspect = height() > 0 ? static_cast<float>(width()) / static_cast<float>(height()) : 1.0f;
+    camera_.frame(sceneBounds(document_->scene()), aspect);
+    framedOnce_ = true;
+    update();
+}
+
+void Viewport::setShowCounters(bool show) {
+    if (show == showCounters_) return;
+    showCounters_ = show;
+    update();
+}
+
+int Viewport::pickObject(QPoint position) const {
+    // Ray through the pixel against each object's bounding sphere, nearest hit wins; then the
+    // exact triangles of that candidate set would be the next refinement. Spheres are what the
+    // culling uses too, so what is picked is what could be drawn.
+    const float aspect = height() > 0 ? static_cast<float>(width()) / static_cast<float>(height()) : 1.0f;
+    const Scene& scene = document_->scene();
+    const Bounds bounds = sceneBounds(scene);
+    const float sceneRadius =
+        std::max(bounds.radius(), glm::length(camera_.target - bounds.centre()) + bounds.radius());
+    const glm::mat4 inverse = glm::inverse(camera_.projection(aspect, sceneRadius) * camera_.view());
+    const float x = 2.0f * (static_cast<float>(position.x()) + 0.5f) / static_cast<float>(width()) - 1.0f;
+    const float y = 1.0f - 2.0f * (static_cast<float>(position.y()) + 0.5f) / static_cast<float>(height());
+    glm::vec4 nearPoint = inverse * glm::vec4(x, y, -1.0f, 1.0f);
+    glm::vec4 farPoint = inverse * glm::vec4(x, y, 1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
+    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+    int best = -1;
+    float bestDistance = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < document_->objectCount(); ++i) {
+        const SceneObject& object = document_->object(i);
+        if (!object.visible || !object.mesh) continue;
+        const glm::vec3 toCentre = object.worldCentre() - origin;
+        const float along = glm::dot(toCentre, direction);
+        const float radius = object.worldRadius() * 0.8f;  // spheres are loose; favour the centre
+        const float miss2 = glm::dot(toCentre, toCentre) - along * along;
+        if (along <= 0.0f || miss2 > radius * radius) continue;
+        const float distance = along - std::sqrt(radius * radius - miss2);
+        if (distance < bestDistance) {
+            bestDistance = distance;
+            best = i;
+        }
+    }
+    return best;
+}
+
+void Viewport::mousePressEvent(QMouseEvent* event) {
+    pressPos_ = lastPos_ = event->position().toPoint();
+    dragButton_ = event->button();
+    dragged_ = false;
+}
+
+void Viewport::mouseMoveEvent(QMouseEvent* event) {
+    if (dragButton_ == Qt::NoButton) return;
+    const QPoint pos = event->position().toPoint();
+    const QPoint delta = pos - lastPos_;
+    lastPos_ = pos;
+    if ((pos - pressPos_).manhattanLength() > 3) dragged_ = true;
+    const float h = static_cast<float>(std::max(height(), 1));
+    const bool pan = dragButton_ == Qt::RightButton || dragButton_ == Qt::MiddleButton ||
+                     (event->modifiers() & Qt::ShiftModifier);
+    if (pan)
+        camera_.pan(static_cast<float>(delta.x()) / h, static_cast<float>(delta.y()) / h);
+    else
+        camera_.orbit(-0.4f * static_cast<float>(delta.x()), 0.4f * static_cast<float>(delta.y()));
+    update();
+}
+
+void Viewport::mouseReleaseEvent(QMouseEvent* event) {
+    if (!dragged_ && event->button() == Qt::LeftButton) emit objectClicked(pickObject(event->position().toPoint()));
+    dragButton_ = Qt::NoButton;
+}
+
+void Viewport::wheelEvent(QWheelEvent* event) {
+    const float steps = static_cast<float>(event->angleDelta().y()) / 120.0f;
+    camera_.zoom(std::pow(0.85f, steps));
+    update();
+}
+
+void Viewport::keyPressEvent(QKeyEvent* event) {
+    switch (event->key()) {
+        case Qt::Key_F: frameAll(); break;
+        case Qt::Key_Home:
+            camera_ = OrbitCamera{};
+            frameAll();
+            break;
+        default: QOpenGLWidget::keyPressEvent(event);
+    }
+}
+
+}  // namespace mipgloss::ui
