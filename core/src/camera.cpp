@@ -58,12 +58,27 @@ void OrbitCamera::zoom(float factor) {
 }
 
 void OrbitCamera::frame(const Bounds& bounds, float aspect, float margin) {
-    const float radius = std::max(bounds.radius(), 1e-6f);
-    const float halfY = glm::radians(fovYDegrees) * 0.5f;
-    const float halfX = std::atan(std::tan(halfY) * std::max(aspect, 1e-3f));
-    // A sphere of radius r fits a cone of half-angle a when seen from r / sin(a).
+    // Fit the box's eight corners, not its bounding sphere: a row of objects in a wide image then
+    // fills the image. In camera axes (right, up, back) a corner at (x, y, z) from the centre is
+    // inside the view from distance d when |x| <= (d - z) tan(halfX) and |y| <= (d - z) tan(halfY).
+    const float tanY = std::tan(glm::radians(fovYDegrees) * 0.5f);
+    const float tanX = tanY * std::max(aspect, 1e-3f);
+    const glm::vec3 back = viewBack(yawDegrees, pitchDegrees);
+    const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), back));
+    const glm::vec3 up = glm::cross(back, right);
     target = bounds.centre();
-    distance = margin * radius / std::sin(std::min(halfX, halfY));
+    const float radius = std::max(bounds.radius(), 1e-6f);
+    float needed = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+                          (corner & 4) ? bounds.max.z : bounds.min.z);
+        const glm::vec3 q = p - target;
+        const float z = glm::dot(q, back);
+        needed = std::max({needed, z + margin * std::abs(glm::dot(q, right)) / tanX,
+                           z + margin * std::abs(glm::dot(q, up)) / tanY});
+    }
+    // Never inside the bounds' sphere (the near plane would cut the objects).
+    distance = std::max(needed, 1.05f * radius);
 }
 
 Frustum Frustum::fromViewProjection(const glm::mat4& m) {

@@ -55,7 +55,7 @@ QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
     }
     d.renderer.setEnvironment(environment, environmentVersion);
     d.renderer.render(scene, camera, width, height, d.fbo->handle());
-    return d.fbo->toImage(false).convertToFormat(QImage::Format_RGB32);
+    return d.fbo->toImage(true).convertToFormat(QImage::Format_RGB32);
 }
 
 std::vector<glm::vec4> OffscreenRenderer::lastHdr(int& width, int& height) {

@@ -303,7 +303,7 @@ void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& 
                               std::uint64_t version) {
     Impl& d = *impl_;
     if (!d.gl || !environment || !environment->chain) return;
-    if (d.environment && version == d.environmentVersion) return;
+    if (d.environment == environment && version == d.environmentVersion) return;
     // The chain is uploaded only when it is a different chain (a new irradiance map alone
     // uploads just that).
     if (!d.environment || d.environment->chain != environment->chain) {

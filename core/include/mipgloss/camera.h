@@ -33,8 +33,8 @@ struct OrbitCamera {
     void pan(float dxViewHeights, float dyViewHeights);
     void zoom(float factor);
 
-    // Frame-all: aims at the bounds' centre and backs off until the bounding sphere fits the
-    // narrower of the two fields of view, with `margin` (> 1) to spare. Keeps yaw and pitch.
+    // Frame-all: aims at the bounds' centre and backs off until the box's corners fit both fields
+    // of view with `margin` (> 1) to spare. Keeps yaw and pitch; scale-free (distance ∝ size).
     void frame(const Bounds& bounds, float aspect, float margin = 1.1f);
 };
 
