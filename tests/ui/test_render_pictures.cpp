@@ -162,10 +162,12 @@ TEST(SeamPicture, DiffuseSphereShowsNoCubeEdges) {
         defaultPicture.save(QString::fromStdString((dir / ("seams_default_" + tag + ".png")).string()));
         std::printf("[ SeamPicture ] λ %.0f normal mode, step across edges / beside them: box %.2f, "
                     "default %.2f\n", lambda, box.ratio(), phong.ratio());
-        // Measured on llvmpipe with GL_TEXTURE_CUBE_MAP_SEAMLESS: default 1.08, 1.19, 1.34, 1.64
-        // (the coarser the faces, the more one bilinear ramp spans the whole face); box 1.17,
-        // 1.09, 1.32, 1.58. Bounds: the measured values with 0.2 to spare.
-        const double bound = lambda < 6.5f ? 1.55 : 1.85;
+        // Measured on llvmpipe with GL_TEXTURE_CUBE_MAP_SEAMLESS: default 0.95, 1.03, 1.13, 1.40
+        // (the coarser the faces, the more one bilinear ramp spans a whole face); box 1.09, 0.97,
+        // 1.13, 1.37: with seamless filtering the box chain shows no step at the edges either
+        // (its defect is its error, 16-28 % against the exact convolution, README). Bounds: the
+        // default's measured values with about 0.2 to spare.
+        const double bound = lambda < 6.5f ? 1.35 : 1.65;
         EXPECT_LT(phong.ratio(), bound) << tag;
     }
 }

@@ -1,14 +1,19 @@
 // Triangle meshes: a GL-free value type and import through OpenMesh (OBJ, OFF, PLY, STL, OM).
 //
-// Import always recomputes vertex normals from the faces (area-weighted, OpenMesh's
-// update_normals): STL carries none, OBJ/PLY normals are often missing or inconsistent, and one
-// rule for every format keeps the lookups (reflection vector, normal) comparable across files.
+// Import always recomputes vertex normals from the faces (area-weighted, computeVertexNormals):
+// STL carries none, OBJ/PLY normals are often missing or inconsistent, and one rule for every
+// format keeps the lookups (reflection vector, normal) comparable across files.
 //
 // Validation (MeshError names the file and the problem; nothing is half-loaded):
-//   - unreadable, truncated or non-mesh file, or a file with no faces -> error;
+//   - unreadable, truncated or non-mesh file, or a file with no faces -> error; a face that
+//     refers to a vertex the file lacks, or has fewer than 3 vertices, counts as truncated;
 //   - a non-finite (NaN/Inf) vertex coordinate -> error (it would poison the bounds and framing);
-//   - zero-area (degenerate) faces are dropped and counted in the report; if none remain -> error;
+//   - zero-area (degenerate) faces are dropped and counted in the report; if none remain -> error.
+//     Zero area: fewer than 3 distinct vertices, or a height below 1e-7 of the longest edge;
 //   - vertices no face uses are dropped (they would distort the bounds).
+// Polygons are triangulated as fans. Non-manifold faces (an edge shared by three faces, a pinched
+// vertex) are kept, on the file's own vertices. Vertices keep their file order.
+// Loads may run on any thread; the OpenMesh part of each is serialised (its readers share state).
 #pragma once
 
 #include <glm/vec3.hpp>
