@@ -33,7 +33,7 @@ const char* const kRenderUsage = R"(
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
                   --out IMAGE.png
-  mipgloss bench-render [--objects N] [--size WxH] [--frames F]
+  mipgloss bench-render [--objects N] [--size WxH] [--frames F] [--mesh FILE]
 
 render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X display; under
   CI: xvfb-run). With no scene and no mesh: the default scene (the paper's Figure 1). With --env
@@ -49,7 +49,8 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   --out FILE     output image (PNG, or any format Qt writes, by extension)
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
-  sharing one lambda (the paper: the per-object statement is free), ratio printed.
+  sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
+  load time, first frame and frame time of that one mesh (is a big scan interactive?).
 )";
 
 namespace {
@@ -247,16 +248,70 @@ int runRender(const std::vector<std::string>& args, const char* argv0) {
     }
 }
 
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A big mesh: load time, first frame (with the upload) and steady frame time, with and without
+// multisampling: is it interactive?
+int benchOneMesh(const fs::path& path, int frames, int width, int height) {
+    auto start = std::chrono::steady_clock::now();
+    auto mesh = std::make_shared<const Mesh>(loadMesh(path));
+    const double loadMs = millisecondsSince(start);
+    Scene scene;
+    SceneObject object;
+    object.name = mesh->name;
+    object.mesh = mesh;
+    object.material.lambda = 3.0f;
+    scene.objects.push_back(object);
+    auto environment = std::make_shared<const PreparedEnvironment>(
+        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+    ui::OffscreenRenderer renderer;
+    std::string error;
+    if (!renderer.initialize(&error)) {
+        std::cerr << "mipgloss: error: " << error << '\n';
+        return 1;
+    }
+    OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    start = std::chrono::steady_clock::now();
+    renderer.render(scene, camera, environment, 1, width, height);
+    renderer.finish();
+    const double firstMs = millisecondsSince(start);
+    std::cout << "renderer: " << renderer.glDescription() << "\n"
+              << path.string() << ": " << mesh->triangleCount() << " triangles, " << mesh->vertexCount()
+              << " vertices\nload (read, validate, normals): " << loadMs << " ms\n"
+              << "first frame (with upload): " << firstMs << " ms\n";
+    for (const int samples : {4, 0}) {
+        scene.display.samples = samples;
+        renderer.render(scene, camera, environment, 1, width, height);
+        start = std::chrono::steady_clock::now();
+        for (int f = 0; f < frames; ++f) {
+            camera.orbit(2.0f, 0.0f);  // a turning view, as when the user drags
+            renderer.render(scene, camera, environment, 1, width, height);
+            renderer.finish();
+        }
+        std::cout << "frame, " << (samples ? "4x MSAA" : "no MSAA") << ", " << width << "x" << height
+                  << ": " << millisecondsSince(start) / frames << " ms\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
 int runRenderBench(const std::vector<std::string>& args, const char* argv0) {
     try {
         int objects = 16, frames = 20, width = 960, height = 540;
+        std::optional<fs::path> meshPath;
         for (std::size_t i = 0; i < args.size(); ++i) {
             const std::string& a = args[i];
             auto value = [&]() -> const std::string& {
                 if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
                 return args[++i];
             };
-            if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
+            if (a == "--mesh") meshPath = value();
+            else if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
             else if (a == "--frames") frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
             else if (a == "--size") {
                 if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH");
@@ -267,6 +322,7 @@ int runRenderBench(const std::vector<std::string>& args, const char* argv0) {
             return 1;
         }
         GuiSession session(argv0);
+        if (meshPath) return benchOneMesh(*meshPath, frames, width, height);
         Scene scene;
         auto teapot = std::make_shared<const Mesh>(defaultTeapot());
         const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(objects))));
