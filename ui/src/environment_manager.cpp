@@ -79,6 +79,7 @@ void EnvironmentManager::startJob() {
     cancelRunning_ = cancel;
     const EnvironmentSettings settings = wantedSettings_;
     const ChainNeeds needs = wantedNeeds_;
+    runningSettings_ = settings;
     const std::shared_ptr<const PreparedEnvironment> previous = current_;
     QPointer<EnvironmentManager> self(this);
 
@@ -121,7 +122,7 @@ void EnvironmentManager::onJobFinished(std::uint64_t jobId, std::shared_ptr<Prep
     (void)jobId;
     if (!error.isEmpty()) {
         ++counters_.failures;
-        failedSettings_ = wantedSettings_;
+        failedSettings_ = runningSettings_;  // not wantedSettings_: a newer request may be queued
         haveFailed_ = true;
         std::cerr << "mipgloss: " << error.toStdString() << '\n';
         emit failed(error);

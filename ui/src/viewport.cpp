@@ -30,7 +30,11 @@ Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QW
     });
 }
 
-Viewport::~Viewport() { cleanup(); }
+Viewport::~Viewport() {
+    cleanup();
+    // ~QOpenGLWidget destroys the context later and emits aboutToBeDestroyed: not to us any more.
+    if (QOpenGLContext* c = context()) c->disconnect(this);
+}
 
 const RenderCounters& Viewport::counters() const { return renderer_->counters(); }
 

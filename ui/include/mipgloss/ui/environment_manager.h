@@ -42,6 +42,12 @@ public:
     std::uint64_t version() const { return version_; }
 
     bool busy() const { return busy_; }
+
+    // The settings of the last request that failed. The manager does not retry them by itself (a
+    // scene change would otherwise re-read a bad file every time); an explicit open calls
+    // forgetFailure() first so a file the user has fixed is read again.
+    const EnvironmentSettings& lastFailure() const { return failedSettings_; }
+    void forgetFailure() { haveFailed_ = false; }
     const EnvironmentCounters& counters() const { return counters_; }
 
     // Blocks (processing events) until no job runs; for the command line and tests. False on
@@ -64,6 +70,7 @@ private:
     std::shared_ptr<const PreparedEnvironment> current_;
     std::uint64_t version_ = 0;
     EnvironmentSettings wantedSettings_;
+    EnvironmentSettings runningSettings_;
     ChainNeeds wantedNeeds_;
     bool haveRequest_ = false;
     bool busy_ = false;

@@ -1,0 +1,155 @@
+// mipgloss-gui: the desktop material previewer. A thin shell over mipgloss::ui::MainWindow.
+//
+//   mipgloss-gui [FILES...]                 scenes (.json), meshes, environment images or folders
+//   mipgloss-gui --time-to-first-frame      prints the time from process start to the first frame
+//                                           drawn with the environment, then exits
+//   mipgloss-gui --screenshot FILE          saves the first complete frame to FILE, then exits
+//
+// Exit status: 0 done, 1 bad arguments, 2 no usable OpenGL, 3 timed out, 4 screenshot not written.
+#include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/gl_format.h"
+#include "mipgloss/ui/main_window.h"
+#include "mipgloss/ui/viewport.h"
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QImage>
+#include <QTimer>
+
+#include <time.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+namespace {
+
+// Milliseconds since the kernel started this process (/proc/self/stat field 22, in clock ticks
+// since boot, against CLOCK_BOOTTIME): the dynamic loading and static initialisation before
+// main. 0 when unavailable. Resolution one clock tick (usually 10 ms).
+double processAgeMs() {
+    std::ifstream in("/proc/self/stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // Field 2, the command name, is in parentheses and may hold spaces: count after the last ')'.
+    const std::size_t close = stat.rfind(')');
+    if (close == std::string::npos) return 0.0;
+    std::istringstream fields(stat.substr(close + 1));
+    std::string field;
+    unsigned long long startTicks = 0;
+    for (int i = 3; i <= 22 && fields >> field; ++i)
+        if (i == 22) startTicks = std::stoull(field);
+    const long ticksPerSecond = sysconf(_SC_CLK_TCK);
+    timespec now{};
+    if (startTicks == 0 || ticksPerSecond <= 0 || clock_gettime(CLOCK_BOOTTIME, &now) != 0)
+        return 0.0;
+    const double nowMs = static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+    const double startMs =
+        static_cast<double>(startTicks) * 1e3 / static_cast<double>(ticksPerSecond);
+    return nowMs > startMs ? nowMs - startMs : 0.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    QElapsedTimer clock;
+    clock.start();
+    const double beforeMainMs = processAgeMs();
+    auto sinceStartMs = [&] { return beforeMainMs + static_cast<double>(clock.nsecsElapsed()) * 1e-6; };
+
+    mipgloss::ui::setDefaultSurfaceFormat();  // before any widget or context exists
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("mipgloss"));
+    QApplication::setApplicationVersion(QStringLiteral(MIPGLOSS_VERSION));
+    QApplication::setDesktopFileName(QStringLiteral("mipgloss"));
+
+    QCommandLineParser parser;
+    parser.setApplicationDescription(
+        QStringLiteral("Blurry, glossy and diffuse reflections from one cube-map mip chain"));
+    parser.addHelpOption();
+    parser.addVersionOption();
+    const QCommandLineOption timeOption(
+        QStringLiteral("time-to-first-frame"),
+        QStringLiteral("Print the time from process start to the first frame drawn with the "
+                       "environment ready, then exit."));
+    const QCommandLineOption screenshotOption(
+        QStringLiteral("screenshot"),
+        QStringLiteral("Save the first complete frame (environment built, imports done) to <file>, "
+                       "then exit."),
+        QStringLiteral("file"));
+    const QCommandLineOption timeoutOption(
+        QStringLiteral("timeout"),
+        QStringLiteral("Give up on --time-to-first-frame or --screenshot after <seconds> "
+                       "(default 300)."),
+        QStringLiteral("seconds"), QStringLiteral("300"));
+    parser.addOptions({timeOption, screenshotOption, timeoutOption});
+    parser.addPositionalArgument(QStringLiteral("files"),
+                                 QStringLiteral("Scene (.json), mesh or environment files to open."),
+                                 QStringLiteral("[files...]"));
+    parser.process(app);
+
+    const bool timing = parser.isSet(timeOption);
+    const QString screenshot = parser.value(screenshotOption);
+    bool timeoutOk = false;
+    const int timeoutSeconds = parser.value(timeoutOption).toInt(&timeoutOk);
+    if (!timeoutOk || timeoutSeconds <= 0) {
+        std::fprintf(stderr, "mipgloss-gui: --timeout needs a positive number of seconds\n");
+        return 1;
+    }
+
+    mipgloss::ui::MainWindow window;
+    window.show();
+    window.openFiles(parser.positionalArguments());
+    if (!timing && screenshot.isEmpty()) return QApplication::exec();
+
+    // Measuring or capturing: wait for a frame drawn with the environment uploaded.
+    mipgloss::ui::Viewport* viewport = window.viewport();
+    mipgloss::ui::EnvironmentManager* environments = window.environments();
+    double environmentReadyMs = -1.0;
+    if (environments->current()) environmentReadyMs = sinceStartMs();
+    QObject::connect(environments, &mipgloss::ui::EnvironmentManager::environmentReady, &app, [&] {
+        if (environmentReadyMs < 0.0) environmentReadyMs = sinceStartMs();
+    });
+    QObject::connect(viewport, &mipgloss::ui::Viewport::glFailed, &app, [&](const QString& message) {
+        std::fprintf(stderr, "mipgloss-gui: OpenGL: %s\n", qPrintable(message));
+        QCoreApplication::exit(2);
+    });
+    bool done = false;
+    QObject::connect(viewport, &mipgloss::ui::Viewport::frameDrawn, &app, [&](quint64) {
+        if (done || !environments->current() || viewport->counters().chainUploads == 0) return;
+        // A screenshot waits for the whole scene: no build or import still under way.
+        if (!screenshot.isEmpty() && (environments->busy() || window.importing())) return;
+        done = true;
+        if (timing) {
+            std::printf("first frame: %.0f ms (environment ready at %.0f ms)\n", sinceStartMs(),
+                        environmentReadyMs);
+            std::fflush(stdout);
+        }
+        // Outside paintGL: grabbing renders the widget again.
+        QTimer::singleShot(0, &app, [&] {
+            if (!screenshot.isEmpty()) {
+                const QImage image = viewport->grabFramebuffer();
+                if (image.isNull() || !image.save(screenshot)) {
+                    std::fprintf(stderr, "mipgloss-gui: %s: could not write the screenshot\n",
+                                 qPrintable(screenshot));
+                    QCoreApplication::exit(4);
+                    return;
+                }
+            }
+            QCoreApplication::exit(0);
+        });
+    });
+    // The frame after a finished build or import may already have been drawn: ask for another.
+    QObject::connect(environments, &mipgloss::ui::EnvironmentManager::busyChanged, viewport,
+                     qOverload<>(&QWidget::update));
+    QObject::connect(&window, &mipgloss::ui::MainWindow::importFinished, viewport,
+                     qOverload<>(&QWidget::update));
+    QTimer::singleShot(timeoutSeconds * 1000, &app, [&] {
+        std::fprintf(stderr, "mipgloss-gui: no complete frame within %d s\n", timeoutSeconds);
+        QCoreApplication::exit(3);
+    });
+    return QApplication::exec();
+}

@@ -1,0 +1,316 @@
+// SceneDocument (signals only on change, selection bookkeeping, duplicates sharing meshes) and
+// SceneListModel (QAbstractItemModelTester, visibility and names through the model).
+#include "mipgloss/ui/scene_document.h"
+#include "mipgloss/ui/scene_list_model.h"
+
+#include <gtest/gtest.h>
+
+#include <QAbstractItemModelTester>
+#include <QLocale>
+#include <QSignalSpy>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace mipgloss;
+using namespace mipgloss::ui;
+
+namespace {
+
+// A small scene without file I/O: spheres of radius 1 (world radius = scale).
+std::shared_ptr<const Mesh> sphereMesh() {
+    static const auto mesh = std::make_shared<const Mesh>(makeSphere(8, 16));
+    return mesh;
+}
+
+SceneObject sphereObject(const std::string& name, float x) {
+    SceneObject o;
+    o.name = name;
+    o.mesh = sphereMesh();
+    o.meshSource = "builtin:sphere";
+    o.transform.translation = {x, 0.0f, 0.0f};
+    return o;
+}
+
+// Collects what QAbstractItemModelTester reports (it warns in the "qt.modeltest" category) while
+// alive, so a broken model fails the test instead of only printing.
+class ModelTestWarnings {
+public:
+    ModelTestWarnings() { previous_ = qInstallMessageHandler(&ModelTestWarnings::handle); }
+    ~ModelTestWarnings() { qInstallMessageHandler(previous_); }
+    ModelTestWarnings(const ModelTestWarnings&) = delete;
+    ModelTestWarnings& operator=(const ModelTestWarnings&) = delete;
+    static std::vector<std::string>& messages() {
+        static std::vector<std::string> m;
+        return m;
+    }
+
+private:
+    static void handle(QtMsgType type, const QMessageLogContext& context, const QString& text) {
+        if (type != QtDebugMsg && context.category && std::string(context.category) == "qt.modeltest")
+            messages().push_back(text.toStdString());
+    }
+    QtMessageHandler previous_ = nullptr;
+};
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string out;
+    for (const std::string& l : lines) out += l + "\n";
+    return out;
+}
+
+Scene threeSpheres() {
+    Scene s;
+    s.objects = {sphereObject("a", 0.0f), sphereObject("b", 3.0f), sphereObject("c", 6.0f)};
+    return s;
+}
+
+}  // namespace
+
+TEST(SceneDocument, SettersEmitOnlyOnChange) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    QSignalSpy material(&doc, &SceneDocument::materialChanged);
+    QSignalSpy transform(&doc, &SceneDocument::transformChanged);
+    QSignalSpy object(&doc, &SceneDocument::objectChanged);
+    QSignalSpy environment(&doc, &SceneDocument::environmentChanged);
+    QSignalSpy display(&doc, &SceneDocument::displayChanged);
+    QSignalSpy selection(&doc, &SceneDocument::selectionChanged);
+    QSignalSpy changed(&doc, &SceneDocument::changed);
+
+    // The same values again: nothing.
+    doc.setMaterial(1, doc.object(1).material);
+    doc.setTransform(1, doc.object(1).transform);
+    doc.setVisible(1, true);
+    doc.setName(1, QStringLiteral("b"));
+    doc.setEnvironment(doc.scene().environment);
+    doc.setDisplay(doc.scene().display);
+    doc.setSelected(-1);
+    EXPECT_EQ(material.count() + transform.count() + object.count() + environment.count() +
+                  display.count() + selection.count() + changed.count(),
+              0);
+
+    Material m = doc.object(1).material;
+    m.lambda = 2.5f;
+    doc.setMaterial(1, m);
+    ASSERT_EQ(material.count(), 1);
+    EXPECT_EQ(material.at(0).at(0).toInt(), 1);
+    doc.setMaterial(1, m);  // again: no second signal
+    EXPECT_EQ(material.count(), 1);
+
+    Transform t = doc.object(2).transform;
+    t.scale = 2.0f;
+    doc.setTransform(2, t);
+    EXPECT_EQ(transform.count(), 1);
+    doc.setVisible(0, false);
+    doc.setName(0, QStringLiteral("renamed"));
+    EXPECT_EQ(object.count(), 2);
+    EXPECT_EQ(doc.object(0).name, "renamed");
+
+    EnvironmentSettings e = doc.scene().environment;
+    e.builder = "box";
+    doc.setEnvironment(e);
+    DisplaySettings d = doc.scene().display;
+    d.exposureEv = 1.0f;
+    doc.setDisplay(d);
+    EXPECT_EQ(environment.count(), 1);
+    EXPECT_EQ(display.count(), 1);
+
+    doc.setSelected(2);
+    doc.setSelected(2);
+    EXPECT_EQ(selection.count(), 1);
+    // changed(): every mutation above, never selection.
+    EXPECT_EQ(changed.count(), 1 + 1 + 2 + 1 + 1);
+}
+
+TEST(SceneDocument, MaterialIsSanitised) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    Material m;
+    m.lambda = 1000.0f;
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.lambda, kMaxLambda);
+    m.lambda = -3.0f;
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    m.lambda = 2.0f;
+    doc.setMaterial(0, m);
+    m.lambda = std::numeric_limits<float>::quiet_NaN();
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    // A non-finite transform is refused; the object keeps its placement.
+    Transform t;
+    t.translation.x = std::numeric_limits<float>::infinity();
+    doc.setTransform(0, t);
+    EXPECT_EQ(doc.object(0).transform.translation.x, 0.0f);
+}
+
+TEST(SceneDocument, AddObjectSelectsIt) {
+    SceneDocument doc;
+    QSignalSpy objects(&doc, &SceneDocument::objectsChanged);
+    QSignalSpy selection(&doc, &SceneDocument::selectionChanged);
+    QSignalSpy changed(&doc, &SceneDocument::changed);
+    EXPECT_EQ(doc.addObject(sphereObject("a", 0.0f)), 0);
+    EXPECT_EQ(doc.addObject(sphereObject("b", 3.0f)), 1);
+    EXPECT_EQ(doc.selected(), 1);
+    EXPECT_EQ(objects.count(), 2);
+    EXPECT_EQ(changed.count(), 2);
+    ASSERT_EQ(selection.count(), 2);
+    EXPECT_EQ(selection.at(1).at(0).toInt(), 1);
+}
+
+TEST(SceneDocument, DuplicateSharesMeshAndSitsBeside) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    Material m;
+    m.lambda = 4.0f;
+    m.mode = LookupMode::Normal;
+    doc.setMaterial(1, m);
+    Transform t = doc.object(1).transform;
+    t.scale = 0.5f;
+    doc.setTransform(1, t);
+    QSignalSpy objects(&doc, &SceneDocument::objectsChanged);
+    QSignalSpy changed(&doc, &SceneDocument::changed);
+
+    const int copy = doc.duplicateObject(1);
+    ASSERT_EQ(copy, 2);
+    EXPECT_EQ(doc.objectCount(), 4);
+    EXPECT_EQ(doc.selected(), copy);
+    EXPECT_EQ(objects.count(), 1);
+    EXPECT_EQ(changed.count(), 1);
+    const SceneObject& original = doc.object(1);
+    const SceneObject& duplicate = doc.object(copy);
+    EXPECT_EQ(duplicate.mesh.get(), original.mesh.get()) << "the mesh must be shared, not copied";
+    EXPECT_EQ(duplicate.name, "b copy");
+    EXPECT_EQ(duplicate.material, original.material);
+    EXPECT_EQ(duplicate.meshSource, original.meshSource);
+    // 1.2 world bounding diameters along +x. The bounding sphere holds the mesh's box: radius √3
+    // for the unit sphere, so at scale 0.5 the diameter is √3.
+    const float diameter = 2.0f * original.worldRadius();
+    EXPECT_NEAR(diameter, std::sqrt(3.0f), 1e-4f);
+    EXPECT_NEAR(duplicate.transform.translation.x - original.transform.translation.x,
+                1.2f * diameter, 1e-5f);
+    EXPECT_EQ(duplicate.transform.translation.y, original.transform.translation.y);
+    EXPECT_EQ(duplicate.transform.scale, original.transform.scale);
+    EXPECT_EQ(doc.object(3).name, "c");  // the rest keep their order
+    EXPECT_EQ(doc.duplicateObject(17), -1);
+}
+
+TEST(SceneDocument, RemoveFixesSelection) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    QSignalSpy selection(&doc, &SceneDocument::selectionChanged);
+
+    // Removing an object before the selected one: the selection follows its object.
+    doc.setSelected(2);
+    doc.removeObject(0);
+    EXPECT_EQ(doc.selected(), 1);
+    EXPECT_EQ(doc.object(doc.selected()).name, "c");
+
+    // Removing the selected last object: the new last one is selected.
+    doc.removeObject(1);
+    EXPECT_EQ(doc.selected(), 0);
+    EXPECT_EQ(doc.object(0).name, "b");
+
+    // Removing an object after the selected one: unchanged.
+    doc.addObject(sphereObject("d", 9.0f));
+    doc.setSelected(0);
+    const int before = static_cast<int>(selection.count());
+    doc.removeObject(1);
+    EXPECT_EQ(doc.selected(), 0);
+    EXPECT_EQ(selection.count(), before);
+
+    // Removing the only object clears the selection.
+    doc.removeObject(0);
+    EXPECT_EQ(doc.objectCount(), 0);
+    EXPECT_EQ(doc.selected(), -1);
+    EXPECT_EQ(selection.last().at(0).toInt(), -1);
+
+    doc.removeObject(5);  // out of range: ignored
+    EXPECT_EQ(doc.objectCount(), 0);
+}
+
+TEST(SceneDocument, ResetClearsSelectionAndSignalsOnlyRealChanges) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    doc.setSelected(1);
+    QSignalSpy objects(&doc, &SceneDocument::objectsChanged);
+    QSignalSpy environment(&doc, &SceneDocument::environmentChanged);
+    QSignalSpy selection(&doc, &SceneDocument::selectionChanged);
+    doc.resetScene(threeSpheres());  // same settings
+    EXPECT_EQ(objects.count(), 1);
+    EXPECT_EQ(environment.count(), 0);
+    EXPECT_EQ(selection.count(), 1);
+    EXPECT_EQ(doc.selected(), -1);
+    Scene other = threeSpheres();
+    other.environment.faceSize = 64;
+    doc.resetScene(other);
+    EXPECT_EQ(environment.count(), 1);
+}
+
+TEST(SceneListModel, PassesModelTesterThroughEdits) {
+    ModelTestWarnings warnings;
+    ModelTestWarnings::messages().clear();
+    SceneDocument doc;
+    SceneListModel model(&doc);
+    QAbstractItemModelTester tester(&model, QAbstractItemModelTester::FailureReportingMode::Warning);
+    EXPECT_EQ(model.rowCount(), 0);
+    doc.resetScene(threeSpheres());
+    EXPECT_EQ(model.rowCount(), 3);
+    doc.addObject(sphereObject("d", 9.0f));
+    doc.duplicateObject(0);
+    doc.removeObject(2);
+    doc.setVisible(0, false);
+    doc.setName(1, QStringLiteral("x"));
+    Material m;
+    m.lambda = 5.0f;
+    doc.setMaterial(1, m);
+    EXPECT_EQ(model.rowCount(), doc.objectCount());
+    for (int row = 0; row < model.rowCount(); ++row)
+        EXPECT_EQ(model.data(model.index(row)).toString().toStdString(), doc.object(row).name);
+    doc.resetScene(Scene{});
+    EXPECT_EQ(model.rowCount(), 0);
+    EXPECT_TRUE(ModelTestWarnings::messages().empty()) << joined(ModelTestWarnings::messages());
+}
+
+TEST(SceneListModel, CheckStateEditsVisibilityAndEditRoleRenames) {
+    ModelTestWarnings warnings;
+    ModelTestWarnings::messages().clear();
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    SceneListModel model(&doc);
+    QAbstractItemModelTester tester(&model, QAbstractItemModelTester::FailureReportingMode::Warning);
+    QSignalSpy dataChanged(&model, &QAbstractItemModel::dataChanged);
+    const QModelIndex i = model.index(1);
+    EXPECT_TRUE(model.flags(i) & Qt::ItemIsUserCheckable);
+    EXPECT_EQ(model.data(i, Qt::CheckStateRole).toInt(), Qt::Checked);
+    EXPECT_TRUE(model.setData(i, Qt::Unchecked, Qt::CheckStateRole));
+    EXPECT_FALSE(doc.object(1).visible);
+    EXPECT_EQ(model.data(i, Qt::CheckStateRole).toInt(), Qt::Unchecked);
+    ASSERT_EQ(dataChanged.count(), 1);
+    EXPECT_EQ(dataChanged.at(0).at(0).value<QModelIndex>().row(), 1);
+
+    EXPECT_TRUE(model.setData(i, QStringLiteral("  bunny "), Qt::EditRole));
+    EXPECT_EQ(doc.object(1).name, "bunny");
+    EXPECT_FALSE(model.setData(i, QStringLiteral("   "), Qt::EditRole)) << "empty names refused";
+    EXPECT_EQ(doc.object(1).name, "bunny");
+    EXPECT_TRUE(ModelTestWarnings::messages().empty()) << joined(ModelTestWarnings::messages());
+}
+
+TEST(SceneListModel, TooltipNamesLambdaModeAndTriangles) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    Material m;
+    m.lambda = 3.5f;
+    m.mode = LookupMode::Normal;
+    doc.setMaterial(2, m);
+    SceneListModel model(&doc);
+    const QString tip = model.data(model.index(2), Qt::ToolTipRole).toString();
+    EXPECT_TRUE(tip.contains(QStringLiteral("3.50"))) << tip.toStdString();
+    EXPECT_TRUE(tip.contains(QStringLiteral("normal"))) << tip.toStdString();
+    const QString triangles = QLocale().toString(static_cast<qlonglong>(sphereMesh()->triangleCount()));
+    EXPECT_TRUE(tip.contains(triangles)) << tip.toStdString();
+}

@@ -1,0 +1,359 @@
+#include "mipgloss/ui/material_panel.h"
+
+#include "mipgloss/phong.h"
+#include "mipgloss/ui/scene_document.h"
+
+#include <QCheckBox>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPixmap>
+#include <QPushButton>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mipgloss::ui {
+
+double srgbToLinear(double encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+double linearToSrgb(double linear) {
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+QColor colorFromLinear(const Rgb& linear) {
+    auto encode = [](float c) {
+        return std::clamp(linearToSrgb(std::clamp(static_cast<double>(c), 0.0, 1.0)), 0.0, 1.0);
+    };
+    return QColor::fromRgbF(static_cast<float>(encode(linear.r)),
+                            static_cast<float>(encode(linear.g)),
+                            static_cast<float>(encode(linear.b)));
+}
+
+Rgb linearFromColor(const QColor& color) {
+    const QColor rgb = color.toRgb();
+    return Rgb(static_cast<float>(srgbToLinear(rgb.redF())),
+               static_cast<float>(srgbToLinear(rgb.greenF())),
+               static_cast<float>(srgbToLinear(rgb.blueF())));
+}
+
+namespace {
+
+// The exponent box: its maximum, n = 3N² − 1 at λ = 0, is the base level itself and reads
+// "mirror"; typing "mirror" (or "inf", "∞") asks for it.
+class ExponentSpinBox : public QDoubleSpinBox {
+public:
+    using QDoubleSpinBox::QDoubleSpinBox;
+
+protected:
+    QString textFromValue(double value) const override {
+        if (value >= maximum() - 0.5 * std::pow(10.0, -decimals())) return mirrorText();
+        return QDoubleSpinBox::textFromValue(value);
+    }
+    double valueFromText(const QString& text) const override {
+        if (isMirrorWord(text.trimmed(), true)) return maximum();
+        return QDoubleSpinBox::valueFromText(text);
+    }
+    QValidator::State validate(QString& text, int& pos) const override {
+        const QString t = text.trimmed();
+        if (!t.isEmpty() && isMirrorWord(t, false))
+            return isMirrorWord(t, true) ? QValidator::Acceptable : QValidator::Intermediate;
+        return QDoubleSpinBox::validate(text, pos);
+    }
+
+private:
+    static QString mirrorText() { return QStringLiteral("mirror"); }
+    // `complete`: the whole word; otherwise a prefix of one while typing.
+    static bool isMirrorWord(const QString& text, bool complete) {
+        const QString lower = text.toLower();
+        for (const QString& word : {mirrorText(), QStringLiteral("inf"), QStringLiteral("∞")})
+            if (complete ? lower == word : word.startsWith(lower)) return true;
+        return false;
+    }
+};
+
+QDoubleSpinBox* makeSpin(QWidget* parent, const QString& name, double lo, double hi, int decimals,
+                         double step) {
+    auto* spin = new QDoubleSpinBox(parent);
+    spin->setObjectName(name);
+    spin->setRange(lo, hi);
+    spin->setDecimals(decimals);
+    spin->setSingleStep(step);
+    spin->setKeyboardTracking(false);
+    spin->setAccelerated(true);
+    return spin;
+}
+
+QIcon swatch(const QColor& color) {
+    QPixmap pixmap(32, 16);
+    pixmap.fill(color);
+    return QIcon(pixmap);
+}
+
+}  // namespace
+
+MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
+    : QWidget(parent), document_(document) {
+    setObjectName(QStringLiteral("materialPanel"));
+    auto* outer = new QVBoxLayout(this);
+
+    hint_ = new QLabel(tr("Select an object in the scene list, or click one in the view, to edit "
+                          "its material."),
+                       this);
+    hint_->setObjectName(QStringLiteral("hintLabel"));
+    hint_->setWordWrap(true);
+    outer->addWidget(hint_);
+
+    editor_ = new QWidget(this);
+    editor_->setObjectName(QStringLiteral("editor"));
+    auto* editorLayout = new QVBoxLayout(editor_);
+    editorLayout->setContentsMargins(0, 0, 0, 0);
+    outer->addWidget(editor_);
+    outer->addStretch(1);
+
+    // Material.
+    auto* materialBox = new QGroupBox(tr("Material"), editor_);
+    auto* form = new QFormLayout(materialBox);
+    name_ = new QLineEdit(materialBox);
+    name_->setObjectName(QStringLiteral("nameEdit"));
+    form->addRow(tr("Name"), name_);
+
+    lambdaSlider_ = new QSlider(Qt::Horizontal, materialBox);
+    lambdaSlider_->setObjectName(QStringLiteral("lambdaSlider"));
+    lambdaSlider_->setSingleStep(1);
+    lambdaSlider_->setPageStep(kSliderStepsPerLevel / 2);
+    lambdaSlider_->setTickInterval(kSliderStepsPerLevel);
+    lambdaSlider_->setTickPosition(QSlider::TicksBelow);
+    lambdaSpin_ = makeSpin(materialBox, QStringLiteral("lambdaSpin"), 0.0, 7.0, 2,
+                           1.0 / kSliderStepsPerLevel);
+    auto* lambdaRow = new QHBoxLayout;
+    lambdaRow->addWidget(lambdaSlider_, 1);
+    lambdaRow->addWidget(lambdaSpin_);
+    form->addRow(tr("Blur λ"), lambdaRow);
+    lambdaSlider_->setToolTip(tr("Minimum mip level λ: 0 is a mirror, each level doubles the "
+                                 "blur's width"));
+    lambdaSpin_->setToolTip(lambdaSlider_->toolTip());
+
+    exponentSpin_ = new ExponentSpinBox(materialBox);
+    exponentSpin_->setObjectName(QStringLiteral("exponentSpin"));
+    exponentSpin_->setDecimals(2);
+    exponentSpin_->setKeyboardTracking(false);
+    exponentSpin_->setSingleStep(1.0);
+    form->addRow(tr("Phong exponent n"), exponentSpin_);
+
+    mode_ = new QComboBox(materialBox);
+    mode_->setObjectName(QStringLiteral("modeCombo"));
+    mode_->addItem(tr("reflection vector (glossy)"), static_cast<int>(LookupMode::Reflect));
+    mode_->addItem(tr("surface normal (diffuse)"), static_cast<int>(LookupMode::Normal));
+    form->addRow(tr("Look up by"), mode_);
+
+    irradiance_ = new QCheckBox(tr("Use irradiance map"), materialBox);
+    irradiance_->setObjectName(QStringLiteral("irradianceCheck"));
+    irradiance_->setToolTip(tr("Normal mode: the exact cosine-weighted irradiance instead of the "
+                               "chain at λ"));
+    form->addRow(QString(), irradiance_);
+
+    grazing_ = new QCheckBox(tr("Sharper at grazing angles"), materialBox);
+    grazing_->setObjectName(QStringLiteral("grazingCheck"));
+    form->addRow(QString(), grazing_);
+
+    tint_ = new QPushButton(tr("Choose…"), materialBox);
+    tint_->setObjectName(QStringLiteral("tintButton"));
+    form->addRow(tr("Tint"), tint_);
+    editorLayout->addWidget(materialBox);
+
+    // Placement.
+    auto* placementBox = new QGroupBox(tr("Placement"), editor_);
+    auto* placement = new QFormLayout(placementBox);
+    const char* axes[3] = {"X", "Y", "Z"};
+    auto* translationRow = new QHBoxLayout;
+    auto* rotationRow = new QHBoxLayout;
+    for (int a = 0; a < 3; ++a) {
+        translation_[a] = makeSpin(placementBox, QStringLiteral("translate") + axes[a], -1e6, 1e6,
+                                   3, 0.1);
+        rotation_[a] = makeSpin(placementBox, QStringLiteral("rotate") + axes[a], -360.0, 360.0, 1,
+                                5.0);
+        rotation_[a]->setSuffix(QStringLiteral("°"));
+        translationRow->addWidget(translation_[a]);
+        rotationRow->addWidget(rotation_[a]);
+    }
+    placement->addRow(tr("Position"), translationRow);
+    placement->addRow(tr("Rotation"), rotationRow);
+    scale_ = makeSpin(placementBox, QStringLiteral("scaleSpin"), 1e-5, 1e5, 5, 0.1);
+    placement->addRow(tr("Scale"), scale_);
+    editorLayout->addWidget(placementBox);
+
+    // Edits -> document.
+    connect(name_, &QLineEdit::editingFinished, this, [this] {
+        const QString text = name_->text().trimmed();
+        if (document_->isValidIndex(document_->selected()) && !text.isEmpty())
+            document_->setName(document_->selected(), text);
+        else
+            refresh();
+    });
+    connect(lambdaSlider_, &QSlider::valueChanged, this,
+            [this](int v) { setLambda(v / static_cast<double>(kSliderStepsPerLevel)); });
+    connect(lambdaSpin_, &QDoubleSpinBox::valueChanged, this, &MaterialPanel::setLambda);
+    connect(exponentSpin_, &QDoubleSpinBox::valueChanged, this, [this](double n) {
+        // The maximum is λ = 0 exactly (the formula at n = 3N² − 1 gives 0 up to rounding).
+        setLambda(n >= exponentSpin_->maximum() ? 0.0 : exponentToLambda(n, faceSize()));
+    });
+    connect(mode_, &QComboBox::currentIndexChanged, this, [this](int) {
+        const auto mode = static_cast<LookupMode>(mode_->currentData().toInt());
+        editMaterial([mode](Material& m) { m.mode = mode; });
+    });
+    connect(irradiance_, &QCheckBox::toggled, this,
+            [this](bool on) { editMaterial([on](Material& m) { m.useIrradiance = on; }); });
+    connect(grazing_, &QCheckBox::toggled, this,
+            [this](bool on) { editMaterial([on](Material& m) { m.sharperAtGrazing = on; }); });
+    connect(tint_, &QPushButton::clicked, this, &MaterialPanel::chooseTint);
+    for (int a = 0; a < 3; ++a) {
+        // Each box edits only its own component of the document's value, so the others' rounding
+        // (the boxes show 1 to 5 decimals) never leaks into the transform.
+        connect(translation_[a], &QDoubleSpinBox::valueChanged, this, [this, a](double v) {
+            editTransform([a, v](Transform& t) { t.translation[a] = static_cast<float>(v); });
+        });
+        connect(rotation_[a], &QDoubleSpinBox::valueChanged, this, [this, a](double v) {
+            editTransform([a, v](Transform& t) { t.rotationDegrees[a] = static_cast<float>(v); });
+        });
+    }
+    connect(scale_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editTransform([v](Transform& t) { t.scale = static_cast<float>(v); });
+    });
+
+    // Document -> widgets.
+    connect(document_, &SceneDocument::selectionChanged, this, &MaterialPanel::refresh);
+    connect(document_, &SceneDocument::objectsChanged, this, &MaterialPanel::refresh);
+    connect(document_, &SceneDocument::environmentChanged, this, &MaterialPanel::refresh);
+    connect(document_, &SceneDocument::materialChanged, this, [this](int index) {
+        if (index == document_->selected()) refreshMaterial();
+    });
+    connect(document_, &SceneDocument::transformChanged, this, [this](int index) {
+        if (index == document_->selected()) refreshTransform();
+    });
+    connect(document_, &SceneDocument::objectChanged, this, [this](int index) {
+        if (index == document_->selected()) refresh();
+    });
+    refresh();
+}
+
+int MaterialPanel::faceSize() const { return std::max(1, document_->scene().environment.faceSize); }
+
+int MaterialPanel::maxLevel() const {
+    return std::min(fullChainLevelCount(faceSize()) - 1, static_cast<int>(kMaxLambda));
+}
+
+void MaterialPanel::refresh() {
+    const bool valid = document_->isValidIndex(document_->selected());
+    editor_->setEnabled(valid);
+    hint_->setVisible(!valid);
+    {
+        const QSignalBlocker block(name_);
+        name_->setText(valid ? QString::fromStdString(document_->object(document_->selected()).name)
+                             : QString());
+    }
+    refreshRanges();
+    refreshMaterial();
+    refreshTransform();
+}
+
+void MaterialPanel::refreshRanges() {
+    const int top = maxLevel();
+    const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_);
+    lambdaSlider_->setRange(0, top * kSliderStepsPerLevel);
+    lambdaSpin_->setRange(0.0, top);
+    exponentSpin_->setRange(0.0, lambdaToExponent(0.0, faceSize()));
+    exponentSpin_->setToolTip(
+        tr("Phong exponent with the same lobe width as λ on a %1 base (phong.h); the base level, "
+           "λ 0, is n = %2 and reads \"mirror\"")
+            .arg(QString::number(faceSize()) + QStringLiteral("²"))
+            .arg(lambdaToExponent(0.0, faceSize()), 0, 'f', 0));
+}
+
+void MaterialPanel::refreshMaterial() {
+    const bool valid = document_->isValidIndex(document_->selected());
+    const Material m = valid ? document_->object(document_->selected()).material : Material{};
+    const double lambda = std::clamp(static_cast<double>(m.lambda), 0.0,
+                                     static_cast<double>(maxLevel()));
+    const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_), b4(mode_),
+        b5(irradiance_), b6(grazing_);
+    lambdaSlider_->setValue(static_cast<int>(std::lround(lambda * kSliderStepsPerLevel)));
+    lambdaSpin_->setValue(lambda);
+    exponentSpin_->setValue(lambdaToExponent(lambda, faceSize()));
+    mode_->setCurrentIndex(mode_->findData(static_cast<int>(m.mode)));
+    irradiance_->setChecked(m.useIrradiance);
+    irradiance_->setEnabled(m.mode == LookupMode::Normal);
+    grazing_->setChecked(m.sharperAtGrazing);
+    const QColor color = colorFromLinear(m.tint);
+    tint_->setIcon(swatch(color));
+    tint_->setToolTip(tr("Linear RGB %1, %2, %3 (sRGB %4)")
+                          .arg(m.tint.r, 0, 'f', 3)
+                          .arg(m.tint.g, 0, 'f', 3)
+                          .arg(m.tint.b, 0, 'f', 3)
+                          .arg(color.name()));
+}
+
+void MaterialPanel::refreshTransform() {
+    const bool valid = document_->isValidIndex(document_->selected());
+    const SceneObject* object = valid ? &document_->object(document_->selected()) : nullptr;
+    const Transform t = object ? object->transform : Transform{};
+    // Arrow steps of about a twentieth of the object's size, so a 0.2-unit scan and a 120-unit one
+    // both move sensibly.
+    const float radius = object ? object->worldRadius() : 1.0f;
+    const double step =
+        radius > 0.0f ? std::pow(10.0, std::floor(std::log10(0.1 * radius))) : 0.1;
+    for (int a = 0; a < 3; ++a) {
+        const QSignalBlocker b1(translation_[a]), b2(rotation_[a]);
+        translation_[a]->setValue(t.translation[a]);
+        translation_[a]->setSingleStep(step);
+        rotation_[a]->setValue(t.rotationDegrees[a]);
+    }
+    const QSignalBlocker b(scale_);
+    scale_->setValue(t.scale);
+}
+
+void MaterialPanel::editMaterial(const std::function<void(Material&)>& edit) {
+    const int index = document_->selected();
+    if (!document_->isValidIndex(index)) return;
+    Material m = document_->object(index).material;
+    edit(m);
+    document_->setMaterial(index, m);
+}
+
+void MaterialPanel::editTransform(const std::function<void(Transform&)>& edit) {
+    const int index = document_->selected();
+    if (!document_->isValidIndex(index)) return;
+    Transform t = document_->object(index).transform;
+    edit(t);
+    document_->setTransform(index, t);
+}
+
+void MaterialPanel::setLambda(double lambda) {
+    if (std::isnan(lambda)) return;
+    const double clamped = std::clamp(lambda, 0.0, static_cast<double>(maxLevel()));
+    editMaterial([clamped](Material& m) { m.lambda = static_cast<float>(clamped); });
+    // A value the document already had (e.g. a clamped one) emits nothing: show it anyway.
+    refreshMaterial();
+}
+
+void MaterialPanel::chooseTint() {
+    const int index = document_->selected();
+    if (!document_->isValidIndex(index)) return;
+    const QColor chosen = QColorDialog::getColor(colorFromLinear(document_->object(index).material.tint),
+                                                 this, tr("Tint (shown in sRGB, stored linear)"));
+    if (!chosen.isValid()) return;  // cancelled
+    const Rgb tint = linearFromColor(chosen);
+    editMaterial([tint](Material& m) { m.tint = tint; });
+}
+
+}  // namespace mipgloss::ui

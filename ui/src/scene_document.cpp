@@ -1,0 +1,143 @@
+#include "mipgloss/ui/scene_document.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mipgloss::ui {
+
+namespace {
+
+// The document never holds a λ outside [0, kMaxLambda] or a NaN one; the tint is kept
+// non-negative and finite (it multiplies linear HDR colour).
+Material sanitized(Material m) {
+    m.lambda = std::isfinite(m.lambda) ? std::clamp(m.lambda, 0.0f, kMaxLambda) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+        m.tint[c] = std::isfinite(m.tint[c]) ? std::max(m.tint[c], 0.0f) : 1.0f;
+    return m;
+}
+
+bool isFinite(const Transform& t) {
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(t.translation[c]) || !std::isfinite(t.rotationDegrees[c])) return false;
+    return std::isfinite(t.scale);
+}
+
+}  // namespace
+
+SceneDocument::SceneDocument(QObject* parent) : QObject(parent) {}
+
+int SceneDocument::addObject(SceneObject object) {
+    object.material = sanitized(object.material);
+    scene_.objects.push_back(std::move(object));
+    const int index = objectCount() - 1;
+    emit objectsChanged();
+    emit changed();
+    setSelected(index);
+    return index;
+}
+
+void SceneDocument::removeObject(int index) {
+    if (!isValidIndex(index)) return;
+    scene_.objects.erase(scene_.objects.begin() + index);
+    // The selection follows its object; a removed selection passes to the object that took its
+    // row (or the new last one), so Delete pressed repeatedly empties the list.
+    const int before = selected_;
+    if (selected_ > index)
+        --selected_;
+    else if (selected_ == index)
+        selected_ = std::min(index, objectCount() - 1);
+    emit objectsChanged();
+    emit changed();
+    if (selected_ != before) emit selectionChanged(selected_);
+}
+
+int SceneDocument::duplicateObject(int index) {
+    if (!isValidIndex(index)) return -1;
+    SceneObject copy = object(index);  // shares the mesh: shared_ptr<const Mesh>
+    copy.name += " copy";
+    // Beside the original along +x, 1.2 world bounding diameters away, so the two never overlap.
+    copy.transform.translation.x += 1.2f * 2.0f * copy.worldRadius();
+    const int newIndex = index + 1;
+    scene_.objects.insert(scene_.objects.begin() + newIndex, std::move(copy));
+    if (selected_ >= newIndex) ++selected_;  // keeps the index valid until setSelected below
+    emit objectsChanged();
+    emit changed();
+    setSelected(newIndex);
+    return newIndex;
+}
+
+void SceneDocument::setMaterial(int index, const Material& material) {
+    if (!isValidIndex(index)) return;
+    const Material m = sanitized(material);
+    Material& current = scene_.objects[static_cast<std::size_t>(index)].material;
+    if (current == m) return;
+    current = m;
+    emit materialChanged(index);
+    emit changed();
+}
+
+void SceneDocument::setTransform(int index, const Transform& transform) {
+    if (!isValidIndex(index) || !isFinite(transform)) return;
+    Transform& current = scene_.objects[static_cast<std::size_t>(index)].transform;
+    if (current == transform) return;
+    current = transform;
+    emit transformChanged(index);
+    emit changed();
+}
+
+void SceneDocument::setVisible(int index, bool visible) {
+    if (!isValidIndex(index)) return;
+    bool& current = scene_.objects[static_cast<std::size_t>(index)].visible;
+    if (current == visible) return;
+    current = visible;
+    emit objectChanged(index);
+    emit changed();
+}
+
+void SceneDocument::setName(int index, const QString& name) {
+    if (!isValidIndex(index)) return;
+    std::string& current = scene_.objects[static_cast<std::size_t>(index)].name;
+    const std::string value = name.toStdString();
+    if (current == value) return;
+    current = value;
+    emit objectChanged(index);
+    emit changed();
+}
+
+void SceneDocument::setEnvironment(const EnvironmentSettings& settings) {
+    if (scene_.environment == settings) return;
+    scene_.environment = settings;
+    emit environmentChanged();
+    emit changed();
+}
+
+void SceneDocument::setDisplay(const DisplaySettings& settings) {
+    if (scene_.display == settings) return;
+    scene_.display = settings;
+    emit displayChanged();
+    emit changed();
+}
+
+void SceneDocument::resetScene(Scene scene) {
+    for (SceneObject& o : scene.objects) o.material = sanitized(o.material);
+    const bool environmentDiffers = !(scene_.environment == scene.environment);
+    const bool displayDiffers = !(scene_.display == scene.display);
+    const int before = selected_;
+    scene_ = std::move(scene);
+    selected_ = -1;
+    emit objectsChanged();
+    if (environmentDiffers) emit environmentChanged();
+    if (displayDiffers) emit displayChanged();
+    emit changed();
+    if (selected_ != before) emit selectionChanged(selected_);
+}
+
+void SceneDocument::setSelected(int index) {
+    if (!isValidIndex(index)) index = -1;
+    if (selected_ == index) return;
+    selected_ = index;
+    emit selectionChanged(selected_);
+}
+
+}  // namespace mipgloss::ui

@@ -1,0 +1,408 @@
+#include "mipgloss/ui/scene_file.h"
+
+#include "mipgloss/builders.h"
+
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSaveFile>
+
+#include <glm/vector_relational.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <system_error>
+
+namespace fs = std::filesystem;
+
+namespace mipgloss::ui {
+
+SceneFileError::SceneFileError(const fs::path& file, const std::string& reason)
+    : std::runtime_error(file.string() + ": " + reason), file_(file), reason_(reason) {}
+
+namespace {
+
+constexpr const char* kBuiltinPrefix = "builtin:";
+constexpr const char* kBuiltinTeapot = "builtin:teapot";
+constexpr const char* kBuiltinSphere = "builtin:sphere";
+
+// Sensible bounds for the values that are clamped on load (see scene_file.h).
+constexpr int kMinFaceSize = 4, kMaxFaceSize = 4096;
+constexpr int kMaxSamples = 16;
+constexpr double kMaxExposureEv = 20.0;
+
+bool isBuiltin(const std::string& s) { return s.rfind(kBuiltinPrefix, 0) == 0; }
+
+std::string keyName(const std::string& where, const char* key) {
+    return where.empty() ? std::string(key) : where + "." + key;
+}
+
+template <class T>
+std::string show(T value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+fs::path absoluteNormal(const fs::path& p) {
+    std::error_code ec;
+    fs::path a = fs::absolute(p, ec);
+    return (ec ? p : a).lexically_normal();
+}
+
+const char* handednessName(Handedness h) { return h == Handedness::Left ? "left" : "right"; }
+
+QJsonArray toArray(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
+
+// Reads one scene file's JSON, collecting warnings; every error names the file and the key.
+class Reader {
+public:
+    Reader(const fs::path& file, SceneFileReport* report) : file_(file), report_(report) {}
+
+    [[noreturn]] void fail(const std::string& reason) const { throw SceneFileError(file_, reason); }
+
+    void warn(const std::string& text) const {
+        if (report_) report_->warnings.push_back(file_.string() + ": " + text);
+    }
+
+    QJsonObject object(const QJsonObject& parent, const char* key, const std::string& where,
+                       bool required) const {
+        const QJsonValue v = parent.value(QLatin1String(key));
+        if (v.isUndefined()) {
+            if (required) fail("missing \"" + where + "\"");
+            return {};
+        }
+        if (!v.isObject()) fail("\"" + where + "\" must be an object");
+        return v.toObject();
+    }
+
+    double number(const QJsonObject& o, const char* key, const std::string& where,
+                  double fallback) const {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) return fallback;
+        return finite(v, keyName(where, key));
+    }
+
+    double finite(const QJsonValue& v, const std::string& where) const {
+        if (!v.isDouble()) fail("\"" + where + "\" must be a number");
+        const double d = v.toDouble();
+        if (!std::isfinite(d)) fail("\"" + where + "\" is not a finite number");
+        return d;
+    }
+
+    int integer(const QJsonObject& o, const char* key, const std::string& where,
+                int fallback) const {
+        const double d = number(o, key, where, fallback);
+        if (d != std::floor(d) || std::abs(d) > 1e9)
+            fail("\"" + keyName(where, key) + "\" must be a whole number");
+        return static_cast<int>(d);
+    }
+
+    bool boolean(const QJsonObject& o, const char* key, const std::string& where,
+                 bool fallback) const {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) return fallback;
+        if (!v.isBool()) fail("\"" + keyName(where, key) + "\" must be true or false");
+        return v.toBool();
+    }
+
+    std::string string(const QJsonObject& o, const char* key, const std::string& where,
+                       const std::string* fallback) const {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) {
+            if (!fallback) fail("missing \"" + keyName(where, key) + "\"");
+            return *fallback;
+        }
+        if (!v.isString()) fail("\"" + keyName(where, key) + "\" must be a string");
+        return v.toString().toStdString();
+    }
+
+    glm::vec3 vec3(const QJsonObject& o, const char* key, const std::string& where,
+                   glm::vec3 fallback) const {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) return fallback;
+        const std::string name = keyName(where, key);
+        if (!v.isArray() || v.toArray().size() != 3)
+            fail("\"" + name + "\" must be an array of three numbers");
+        const QJsonArray a = v.toArray();
+        glm::vec3 out;
+        for (int i = 0; i < 3; ++i)
+            out[i] = static_cast<float>(finite(a.at(i), name + "[" + std::to_string(i) + "]"));
+        return out;
+    }
+
+    // Clamps to [lo, hi] with a warning that says what was read and what is used.
+    template <class T>
+    T clamped(T value, T lo, T hi, const std::string& where) const {
+        const T c = std::clamp(value, lo, hi);
+        if (c != value)
+            warn("\"" + where + "\" " + show(value) + " is outside [" + show(lo) + ", " + show(hi) +
+                 "]; using " + show(c));
+        return c;
+    }
+
+    EnvironmentSettings environment(const QJsonObject& o) const {
+        EnvironmentSettings s;
+        const std::string where = "environment";
+        const std::string builtin = kBuiltinEnvironment;
+        const std::string source = string(o, "source", where, &builtin);
+        if (source.empty()) fail("\"environment.source\" is empty");
+        if (isBuiltin(source)) {
+            if (source != kBuiltinEnvironment)
+                fail("unknown built-in environment \"" + source + "\" (there is " + builtin + ")");
+            s.source = source;
+        } else {
+            const fs::path resolved = resolvePathForScene(source, file_);
+            std::error_code ec;
+            if (!fs::exists(resolved, ec))
+                fail("environment \"" + source + "\" not found (looked for " + resolved.string() + ")");
+            s.source = resolved.string();
+        }
+        const std::string autoLayout = layoutName(EnvLayout::Auto);
+        const std::string layout = string(o, "layout", where, &autoLayout);
+        if (!parseLayout(layout, s.layout)) fail("unknown \"environment.layout\" \"" + layout + "\"");
+        const std::string right = "right";
+        const std::string hand = string(o, "handedness", where, &right);
+        if (hand == "right")
+            s.handedness = Handedness::Right;
+        else if (hand == "left")
+            s.handedness = Handedness::Left;
+        else
+            fail("\"environment.handedness\" must be \"right\" or \"left\", not \"" + hand + "\"");
+        s.faceSize = clamped(integer(o, "faceSize", where, s.faceSize), kMinFaceSize, kMaxFaceSize,
+                             "environment.faceSize");
+        const std::string phong(kDefaultBuilder);
+        s.builder = string(o, "builder", where, &phong);
+        if (!isBuilderName(s.builder)) fail("unknown \"environment.builder\" \"" + s.builder + "\"");
+        s.rotationDegrees = static_cast<float>(
+            std::remainder(number(o, "rotationDegrees", where, s.rotationDegrees), 360.0));
+        return s;
+    }
+
+    DisplaySettings display(const QJsonObject& o) const {
+        DisplaySettings d;
+        const std::string where = "display";
+        d.showBackground = boolean(o, "showBackground", where, d.showBackground);
+        d.backgroundLambda = clamped(static_cast<float>(number(o, "backgroundLambda", where,
+                                                               d.backgroundLambda)),
+                                     0.0f, kMaxLambda, "display.backgroundLambda");
+        d.exposureEv = static_cast<float>(clamped(number(o, "exposureEv", where, d.exposureEv),
+                                                  -kMaxExposureEv, kMaxExposureEv,
+                                                  "display.exposureEv"));
+        const std::string aces = toneMapName(ToneMap::Aces);
+        const std::string map = string(o, "toneMap", where, &aces);
+        if (!parseToneMap(map, d.toneMap)) fail("unknown \"display.toneMap\" \"" + map + "\"");
+        const int samples =
+            clamped(integer(o, "samples", where, d.samples), 1, kMaxSamples, "display.samples");
+        // Multisampling takes powers of two.
+        d.samples = static_cast<int>(std::bit_floor(static_cast<unsigned>(samples)));
+        if (d.samples != samples)
+            warn("\"display.samples\" " + std::to_string(samples) + " is not a power of two; using " +
+                 std::to_string(d.samples));
+        return d;
+    }
+
+    Material material(const QJsonObject& o, const std::string& where) const {
+        Material m;
+        const double lambda = number(o, "lambda", where, m.lambda);
+        m.lambda = static_cast<float>(clamped(lambda, 0.0, static_cast<double>(kMaxLambda),
+                                              where + ".lambda"));
+        const std::string reflect = lookupModeName(LookupMode::Reflect);
+        const std::string mode = string(o, "mode", where, &reflect);
+        if (!parseLookupMode(mode, m.mode)) fail("unknown \"" + where + ".mode\" \"" + mode + "\"");
+        m.useIrradiance = boolean(o, "useIrradiance", where, m.useIrradiance);
+        m.tint = vec3(o, "tint", where, m.tint);
+        if (glm::any(glm::lessThan(m.tint, glm::vec3(0.0f))))
+            fail("\"" + where + ".tint\" has a negative component");
+        m.sharperAtGrazing = boolean(o, "sharperAtGrazing", where, m.sharperAtGrazing);
+        return m;
+    }
+
+    Transform transform(const QJsonObject& o, const std::string& where) const {
+        Transform t;
+        t.translation = vec3(o, "translation", where, t.translation);
+        t.rotationDegrees = vec3(o, "rotationDegrees", where, t.rotationDegrees);
+        t.scale = static_cast<float>(number(o, "scale", where, t.scale));
+        if (!(t.scale > 0.0f)) fail("\"" + where + ".scale\" must be positive");
+        return t;
+    }
+
+    // Built-ins and files, each loaded once per scene file and shared by the objects using it.
+    std::shared_ptr<const Mesh> mesh(const std::string& source, const std::string& where,
+                                     std::string& meshSource) {
+        if (isBuiltin(source)) {
+            meshSource = source;
+            auto& cached = cache_[source];
+            if (!cached) {
+                if (source == kBuiltinTeapot)
+                    cached = std::make_shared<const Mesh>(defaultTeapot());
+                else if (source == kBuiltinSphere)
+                    cached = std::make_shared<const Mesh>(makeSphere());
+                else
+                    fail("\"" + where + ".mesh\": unknown built-in mesh \"" + source +
+                         "\" (there are builtin:teapot and builtin:sphere)");
+            }
+            return cached;
+        }
+        const fs::path resolved = resolvePathForScene(source, file_);
+        meshSource = resolved.string();
+        auto& cached = cache_[meshSource];
+        if (cached) return cached;
+        std::error_code ec;
+        if (!fs::is_regular_file(resolved, ec))
+            fail("mesh file \"" + source + "\" of " + where + " not found (looked for " +
+                 resolved.string() + ")");
+        try {
+            MeshReport meshReport;
+            cached = std::make_shared<const Mesh>(loadMesh(resolved, &meshReport));
+            for (const std::string& w : meshReport.warnings) warn(w);
+        } catch (const MeshError& e) {
+            fail("mesh of " + where + ": " + e.what());
+        }
+        return cached;
+    }
+
+private:
+    fs::path file_;
+    SceneFileReport* report_;
+    std::map<std::string, std::shared_ptr<const Mesh>> cache_;
+};
+
+}  // namespace
+
+std::string relativePathForScene(const fs::path& target, const fs::path& sceneFile) {
+    const std::string text = target.string();
+    if (text.empty() || isBuiltin(text)) return text;
+    const fs::path absolute = absoluteNormal(target);
+    const fs::path relative = absolute.lexically_relative(absoluteNormal(sceneFile).parent_path());
+    if (relative.empty()) return absolute.generic_string();
+    int ups = 0;
+    for (const fs::path& part : relative) ups += part == ".." ? 1 : 0;
+    return ups <= 2 ? relative.generic_string() : absolute.generic_string();
+}
+
+fs::path resolvePathForScene(const std::string& stored, const fs::path& sceneFile) {
+    if (isBuiltin(stored)) return stored;
+    const fs::path p(stored);
+    if (p.is_absolute()) return p.lexically_normal();
+    return (absoluteNormal(sceneFile).parent_path() / p).lexically_normal();
+}
+
+QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
+    const EnvironmentSettings& e = scene.environment;
+    QJsonObject environment{
+        {"source", QString::fromStdString(relativePathForScene(e.source, sceneFile))},
+        {"layout", layoutName(e.layout)},
+        {"handedness", handednessName(e.handedness)},
+        {"faceSize", e.faceSize},
+        {"builder", QString::fromStdString(e.builder)},
+        {"rotationDegrees", e.rotationDegrees},
+    };
+    const DisplaySettings& d = scene.display;
+    QJsonObject display{
+        {"showBackground", d.showBackground}, {"backgroundLambda", d.backgroundLambda},
+        {"exposureEv", d.exposureEv},         {"toneMap", toneMapName(d.toneMap)},
+        {"samples", d.samples},
+    };
+    QJsonArray objects;
+    for (const SceneObject& o : scene.objects) {
+        const Material& m = o.material;
+        QJsonObject material{
+            {"lambda", m.lambda},
+            {"mode", lookupModeName(m.mode)},
+            {"useIrradiance", m.useIrradiance},
+            {"tint", toArray(m.tint)},
+            {"sharperAtGrazing", m.sharperAtGrazing},
+        };
+        QJsonObject transform{
+            {"translation", toArray(o.transform.translation)},
+            {"rotationDegrees", toArray(o.transform.rotationDegrees)},
+            {"scale", o.transform.scale},
+        };
+        objects.append(QJsonObject{
+            {"name", QString::fromStdString(o.name)},
+            {"mesh", QString::fromStdString(relativePathForScene(o.meshSource, sceneFile))},
+            {"visible", o.visible},
+            {"transform", transform},
+            {"material", material},
+        });
+    }
+    QJsonObject root{
+        {"format", kSceneFormat}, {"version", kSceneVersion}, {"environment", environment},
+        {"display", display},     {"objects", objects},
+    };
+    return QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
+Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFileReport* report) {
+    SceneFileReport local;
+    Reader reader(sceneFile, &local);
+    QJsonParseError parseError;
+    const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
+    if (parseError.error != QJsonParseError::NoError)
+        reader.fail("not valid JSON at byte " + std::to_string(parseError.offset) + ": " +
+                    parseError.errorString().toStdString());
+    if (!doc.isObject()) reader.fail("not a scene: the top level is not a JSON object");
+    const QJsonObject root = doc.object();
+    if (root.value("format").toString() != QLatin1String(kSceneFormat))
+        reader.fail(std::string("not a scene: \"format\" is not \"") + kSceneFormat + "\"");
+    const int version = reader.integer(root, "version", "", -1);
+    if (version < 1) reader.fail("missing or invalid \"version\"");
+    if (version > kSceneVersion)
+        reader.fail("scene version " + std::to_string(version) + " is newer than this program reads (" +
+                    std::to_string(kSceneVersion) + ")");
+
+    Scene scene;
+    scene.environment = reader.environment(reader.object(root, "environment", "environment", false));
+    scene.display = reader.display(reader.object(root, "display", "display", false));
+
+    const QJsonValue objects = root.value("objects");
+    if (!objects.isUndefined() && !objects.isArray()) reader.fail("\"objects\" must be an array");
+    const QJsonArray array = objects.toArray();
+    for (qsizetype i = 0; i < array.size(); ++i) {
+        const std::string where = "objects[" + std::to_string(i) + "]";
+        if (!array.at(i).isObject()) reader.fail("\"" + where + "\" must be an object");
+        const QJsonObject o = array.at(i).toObject();
+        SceneObject object;
+        const std::string fallbackName = "object " + std::to_string(i + 1);
+        object.name = reader.string(o, "name", where, &fallbackName);
+        object.visible = reader.boolean(o, "visible", where, true);
+        object.transform = reader.transform(reader.object(o, "transform", where + ".transform", false),
+                                            where + ".transform");
+        object.material = reader.material(reader.object(o, "material", where + ".material", false),
+                                          where + ".material");
+        const std::string source = reader.string(o, "mesh", where, nullptr);
+        object.mesh = reader.mesh(source, where + " (\"" + object.name + "\")", object.meshSource);
+        scene.objects.push_back(std::move(object));
+    }
+    if (report) report->warnings.insert(report->warnings.end(), local.warnings.begin(),
+                                        local.warnings.end());
+    return scene;
+}
+
+void saveScene(const Scene& scene, const fs::path& file) {
+    for (const SceneObject& o : scene.objects)
+        if (o.meshSource.empty())
+            throw SceneFileError(file, "object \"" + o.name + "\" has no mesh file to refer to");
+    QSaveFile out(QString::fromStdString(file.string()));
+    if (!out.open(QIODevice::WriteOnly))
+        throw SceneFileError(file, "cannot write: " + out.errorString().toStdString());
+    const QByteArray json = sceneToJson(scene, file);
+    if (out.write(json) != json.size() || !out.commit())
+        throw SceneFileError(file, "cannot write: " + out.errorString().toStdString());
+}
+
+Scene loadScene(const fs::path& file, SceneFileReport* report) {
+    QFile in(QString::fromStdString(file.string()));
+    if (!in.exists()) throw SceneFileError(file, "no such file");
+    if (!in.open(QIODevice::ReadOnly))
+        throw SceneFileError(file, "cannot read: " + in.errorString().toStdString());
+    return sceneFromJson(in.readAll(), file, report);
+}
+
+}  // namespace mipgloss::ui
