@@ -12,6 +12,7 @@
 #include "mipgloss/ui/viewport.h"
 
 #include <QApplication>
+#include <QIcon>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QImage>
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
     mipgloss::ui::setDefaultSurfaceFormat();  // before any widget or context exists
     QApplication app(argc, argv);
     QApplication::setApplicationName(QStringLiteral("mipgloss"));
+    QApplication::setWindowIcon(QIcon(QStringLiteral(":/mipgloss/desktop/mipgloss.png")));
     QApplication::setApplicationVersion(QStringLiteral(MIPGLOSS_VERSION));
     QApplication::setDesktopFileName(QStringLiteral("mipgloss"));
 
@@ -85,7 +87,10 @@ int main(int argc, char** argv) {
         QStringLiteral("Give up on --time-to-first-frame or --screenshot after <seconds> "
                        "(default 300)."),
         QStringLiteral("seconds"), QStringLiteral("300"));
-    parser.addOptions({timeOption, screenshotOption, timeoutOption});
+    const QCommandLineOption wholeWindowOption(
+        QStringLiteral("whole-window"),
+        QStringLiteral("With --screenshot: the whole window (panels and all), not just the view."));
+    parser.addOptions({timeOption, screenshotOption, timeoutOption, wholeWindowOption});
     parser.addPositionalArgument(QStringLiteral("files"),
                                  QStringLiteral("Scene (.json), mesh or environment files to open."),
                                  QStringLiteral("[files...]"));
@@ -131,7 +136,8 @@ int main(int argc, char** argv) {
         // Outside paintGL: grabbing renders the widget again.
         QTimer::singleShot(0, &app, [&] {
             if (!screenshot.isEmpty()) {
-                const QImage image = viewport->grabFramebuffer();
+                const QImage image = parser.isSet(wholeWindowOption) ? window.grab().toImage()
+                                                                     : viewport->grabFramebuffer();
                 if (image.isNull() || !image.save(screenshot)) {
                     std::fprintf(stderr, "mipgloss-gui: %s: could not write the screenshot\n",
                                  qPrintable(screenshot));
