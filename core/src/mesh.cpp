@@ -754,6 +754,24 @@ Mesh defaultTeapot() {
     return loadMeshFromMemory({embedded::default_teapot_obj, embedded::default_teapot_obj_size}, "teapot.obj");
 }
 
+void writeMesh(const Mesh& mesh, const fs::path& path) {
+    const std::string ext = lowerExtension(path);
+    const auto& known = meshExtensions();
+    if (std::find_if(known.begin(), known.end(), [&](const char* e) { return ext == e; }) == known.end())
+        throw MeshError(path, "cannot write '" + ext + "' files (use " + extensionList() + ")");
+    OMesh out;
+    std::vector<VertexHandle> handles;
+    handles.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions) handles.push_back(out.add_vertex(OMesh::Point(p.x, p.y, p.z)));
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+        out.add_face(handles[mesh.indices[i]], handles[mesh.indices[i + 1]], handles[mesh.indices[i + 2]]);
+    OpenMesh::IO::Options options;
+    if (ext == ".ply" || ext == ".stl" || ext == ".off") options += OpenMesh::IO::Options::Binary;
+    std::lock_guard<std::mutex> lock(openMeshMutex());
+    if (!OpenMesh::IO::write_mesh(out, path.string(), options))
+        throw MeshError(path, "could not be written");
+}
+
 Mesh makeSphere(int rings, int segments) {
     rings = std::max(rings, 2);
     segments = std::max(segments, 3);

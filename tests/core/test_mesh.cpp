@@ -703,3 +703,24 @@ TEST(MeshImportSpeed, MillionTriangles) {
                     seconds(t1, t2), seconds(t0, t1) / seconds(t1, t2));
     }
 }
+
+namespace mipgloss {
+namespace {
+
+TEST(MeshExport, WrittenFilesLoadBackAlike) {
+    const Mesh sphere = makeSphere(16, 32);
+    const auto dir = std::filesystem::temp_directory_path() / ("mipgloss-write-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    for (const char* ext : {".ply", ".obj", ".stl", ".off", ".om"}) {
+        const auto file = dir / (std::string("sphere") + ext);
+        writeMesh(sphere, file);
+        const Mesh back = loadMesh(file);
+        EXPECT_EQ(back.triangleCount(), sphere.triangleCount()) << ext;
+        EXPECT_NEAR(back.bounds.radius(), sphere.bounds.radius(), 1e-5f) << ext;
+    }
+    EXPECT_THROW(writeMesh(sphere, dir / "sphere.xyz"), MeshError);
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mipgloss
