@@ -8,6 +8,7 @@
 #include "mipgloss/scene.h"
 #include "mipgloss/ui/offscreen.h"
 
+#include <QCoreApplication>
 #include <QImage>
 #include <QString>
 
@@ -30,15 +31,22 @@ inline std::filesystem::path outputDir() {
     return dir;
 }
 
-// One context for the whole binary (llvmpipe contexts are cheap, but shader compiles are not).
-inline ui::OffscreenRenderer* sharedRenderer(std::string* error = nullptr) {
+inline std::unique_ptr<ui::OffscreenRenderer>& sharedRendererSlot() {
     static std::unique_ptr<ui::OffscreenRenderer> renderer;
+    return renderer;
+}
+
+// One context for the whole binary (llvmpipe contexts are cheap, but shader compiles are not).
+// Released while the application still exists: its GL teardown needs the platform.
+inline ui::OffscreenRenderer* sharedRenderer(std::string* error = nullptr) {
+    std::unique_ptr<ui::OffscreenRenderer>& renderer = sharedRendererSlot();
     static std::string failure;
     static bool tried = false;
     if (!tried) {
         tried = true;
         auto r = std::make_unique<ui::OffscreenRenderer>();
         if (r->initialize(&failure)) renderer = std::move(r);
+        qAddPostRoutine([] { sharedRendererSlot().reset(); });
     }
     if (error) *error = failure;
     return renderer.get();
