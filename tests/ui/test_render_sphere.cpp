@@ -23,6 +23,7 @@ struct SphereCase {
     float lambda;
     LookupMode mode;
     int size;  // pixels: the mirror needs magnification (more than a pixel per texel)
+    bool irradiance = false;  // normal mode into the irradiance map instead of the chain
 };
 
 class RenderSphere : public ::testing::TestWithParam<SphereCase> {};
@@ -30,7 +31,7 @@ class RenderSphere : public ::testing::TestWithParam<SphereCase> {};
 // The environment every case shares: the embedded courtyard at 128², every level filtered.
 std::shared_ptr<const PreparedEnvironment> courtyard() {
     static auto env = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(EnvironmentSettings{}, ChainNeeds{7, false}));
+        prepareEnvironment(EnvironmentSettings{}, ChainNeeds{7, true}));
     return env;
 }
 
@@ -46,6 +47,7 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     sphere.mesh = std::make_shared<const Mesh>(makeSphere(128, 256));
     sphere.material.lambda = param.lambda;
     sphere.material.mode = param.mode;
+    sphere.material.useIrradiance = param.irradiance;
     scene.objects.push_back(sphere);
     scene.display.showBackground = false;
     scene.display.samples = 0;  // no multisampling: each pixel is one fragment at its centre
@@ -104,11 +106,13 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
             // Same level: only where λ, not the pixel footprint, sets the level (GL takes
             // max(λ, footprint); where they are close the two estimates of the footprint differ).
             const float footprint = test::footprintLod(*d, *dx, *dy, faceSize);
-            if (footprint > param.lambda - 0.5f) {
+            if (!param.irradiance && footprint > param.lambda - 0.5f) {
                 ++outside;
                 continue;
             }
-            const Rgb expected = test::sampleChain(chain, *d, param.lambda);
+            // The irradiance map has one level, so its footprint never matters.
+            const Rgb expected = param.irradiance ? env->irradiance->sample(*d)
+                                                  : test::sampleChain(chain, *d, param.lambda);
             const std::size_t i = static_cast<std::size_t>(y * w + x);
             cpu[i] = glm::vec4(expected, 1.0f);
             const glm::vec3 got(gpu[i]);
@@ -156,7 +160,8 @@ INSTANTIATE_TEST_SUITE_P(Lookups, RenderSphere,
                                            SphereCase{"lambda3", 3.0f, LookupMode::Reflect, 384},
                                            SphereCase{"lambda5", 5.0f, LookupMode::Reflect, 384},
                                            SphereCase{"lambda3_5", 3.5f, LookupMode::Reflect, 384},
-                                           SphereCase{"normal_lambda6", 6.0f, LookupMode::Normal, 384}),
+                                           SphereCase{"normal_lambda6", 6.0f, LookupMode::Normal, 384},
+                                           SphereCase{"normal_irradiance", 0.0f, LookupMode::Normal, 384, true}),
                          [](const ::testing::TestParamInfo<SphereCase>& p) { return std::string(p.param.name); });
 
 }  // namespace
