@@ -83,6 +83,28 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
     EXPECT_LT(detail[3], 0.06) << "the normal-mode teapot is smooth";
 }
 
+TEST(Culling, ObjectsOutsideTheViewAreNotDrawn) {
+    std::string error;
+    ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
+    ASSERT_NE(renderer, nullptr) << error;
+    Scene scene = makeFigure1Scene();
+    const auto env = std::make_shared<const PreparedEnvironment>(
+        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+    // Frame the first teapot alone: the other three are off to the right.
+    OrbitCamera camera;
+    camera.pitchDegrees = 0.0f;
+    const SceneObject& first = scene.objects[0];
+    const Bounds b{first.worldCentre() - glm::vec3(first.worldRadius()), first.worldCentre() + glm::vec3(first.worldRadius())};
+    camera.frame(b, 1.0f);
+    camera.zoom(0.4f);  // bounding spheres are loose: come close enough that the neighbours' miss
+    renderer->render(scene, camera, env, 1, 256, 256);
+    EXPECT_EQ(renderer->counters().objectsDrawn, 1u);
+    EXPECT_EQ(renderer->counters().objectsCulled, 3u);
+    scene.objects[0].visible = false;
+    renderer->render(scene, camera, env, 1, 256, 256);
+    EXPECT_EQ(renderer->counters().objectsDrawn, 0u) << "hidden objects are not drawn";
+}
+
 // "Sharper at grazing angles": λ falls toward 0 where the view grazes the surface (Schlick's
 // weight), and only there.
 TEST(GrazingOption, SharpensTheRimAndLeavesTheCentre) {

@@ -467,3 +467,31 @@ TEST(MainWindow, SceneListButtonsAndDeleteKey) {
     QTest::keyClick(spin, Qt::Key_Delete);
     EXPECT_EQ(doc->objectCount(), 4);
 }
+
+namespace {
+
+// Skip what the scene does not need, seen through the window's counters: no frames while idle,
+// the irradiance map only once an object asks for it (and then no chain rebuild).
+TEST(MainWindow, IdleDrawsNothingAndIrradianceComesOnlyWhenAsked) {
+    auto w = openWindow();
+    ASSERT_TRUE(settledFrame(*w));
+    const quint64 framesBefore = w->viewport()->counters().frames;
+    QTest::qWait(1500);  // events processed, nothing changed
+    EXPECT_EQ(w->viewport()->counters().frames, framesBefore) << "frames drawn while idle";
+
+    const EnvironmentCounters before = w->environments()->counters();
+    EXPECT_EQ(before.irradianceBuilds, 0u) << "Figure 1 does not use the irradiance map";
+    EXPECT_FALSE(w->environments()->current()->irradiance);
+    Material m = w->document()->object(3).material;
+    ASSERT_EQ(m.mode, LookupMode::Normal);
+    m.useIrradiance = true;
+    w->document()->setMaterial(3, m);
+    ASSERT_TRUE(settledFrame(*w));
+    const EnvironmentCounters after = w->environments()->counters();
+    EXPECT_EQ(after.irradianceBuilds, 1u);
+    EXPECT_EQ(after.chainBuilds, before.chainBuilds) << "the chain is kept";
+    EXPECT_EQ(w->viewport()->counters().irradianceUploads, 1u);
+    EXPECT_EQ(w->viewport()->counters().chainUploads, 1u);
+}
+
+}  // namespace
