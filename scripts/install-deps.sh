@@ -5,7 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libglm-dev libopenmesh-dev libtbb-dev
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
-  libgtest-dev libbenchmark-dev xvfb xauth
+  libgtest-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri qt6-qpa-plugins
 )
 missing=()
 for p in "${packages[@]}"; do
