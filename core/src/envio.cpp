@@ -23,9 +23,6 @@ namespace mipgloss {
 
 namespace fs = std::filesystem;
 
-EnvError::EnvError(const fs::path& file, const std::string& reason)
-    : std::runtime_error(file.string() + ": " + reason), file_(file), reason_(reason) {}
-
 const char* layoutName(EnvLayout layout) {
     switch (layout) {
         case EnvLayout::Auto: return "auto";

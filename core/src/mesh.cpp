@@ -44,9 +44,6 @@ namespace fs = std::filesystem;
 
 namespace mipgloss {
 
-MeshError::MeshError(const fs::path& file, const std::string& reason)
-    : std::runtime_error(file.string() + ": " + reason), file_(file), reason_(reason) {}
-
 float Bounds::radius() const { return 0.5f * glm::length(max - min); }
 
 bool Mesh::isValid() const {

@@ -22,9 +22,6 @@ namespace fs = std::filesystem;
 
 namespace mipgloss::ui {
 
-SceneFileError::SceneFileError(const fs::path& file, const std::string& reason)
-    : std::runtime_error(file.string() + ": " + reason), file_(file), reason_(reason) {}
-
 namespace {
 
 constexpr const char* kBuiltinPrefix = "builtin:";

@@ -27,6 +27,7 @@
 #pragma once
 
 #include "mipgloss/cubemap.h"
+#include "mipgloss/file_error.h"
 
 #include <cstddef>
 #include <filesystem>
@@ -39,15 +40,9 @@
 namespace mipgloss {
 
 // A user-caused problem with a file: what() names the file and the reason.
-class EnvError : public std::runtime_error {
+class EnvError : public FileError {
 public:
-    EnvError(const std::filesystem::path& file, const std::string& reason);
-    const std::filesystem::path& file() const { return file_; }
-    const std::string& reason() const { return reason_; }
-
-private:
-    std::filesystem::path file_;
-    std::string reason_;
+    using FileError::FileError;
 };
 
 enum class EnvLayout {

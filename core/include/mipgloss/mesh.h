@@ -16,6 +16,8 @@
 // Loads may run on any thread; the OpenMesh part of each is serialised (its readers share state).
 #pragma once
 
+#include "mipgloss/file_error.h"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -27,15 +29,9 @@
 
 namespace mipgloss {
 
-class MeshError : public std::runtime_error {
+class MeshError : public FileError {
 public:
-    MeshError(const std::filesystem::path& file, const std::string& reason);
-    const std::filesystem::path& file() const { return file_; }
-    const std::string& reason() const { return reason_; }
-
-private:
-    std::filesystem::path file_;
-    std::string reason_;
+    using FileError::FileError;
 };
 
 // Axis-aligned bounds plus the bounding sphere used for framing and view culling.

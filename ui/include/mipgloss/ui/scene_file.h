@@ -27,6 +27,7 @@
 // are clamped with a warning in the report. Optional keys default to the values in scene.h.
 #pragma once
 
+#include "mipgloss/file_error.h"
 #include "mipgloss/scene.h"
 
 #include <QByteArray>
@@ -41,15 +42,9 @@ namespace mipgloss::ui {
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
 inline constexpr int kSceneVersion = 1;
 
-class SceneFileError : public std::runtime_error {
+class SceneFileError : public FileError {
 public:
-    SceneFileError(const std::filesystem::path& file, const std::string& reason);
-    const std::filesystem::path& file() const { return file_; }
-    const std::string& reason() const { return reason_; }
-
-private:
-    std::filesystem::path file_;
-    std::string reason_;
+    using FileError::FileError;
 };
 
 struct SceneFileReport {
