@@ -8,11 +8,37 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <system_error>
+
+#include <unistd.h>
 
 namespace mipgloss::test {
 
 inline std::filesystem::path assetDir() { return MIPGLOSS_ASSET_DIR; }
 inline std::filesystem::path asset(const std::string& rel) { return assetDir() / rel; }
+
+// A fresh folder per test (named for the process and the test), removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = std::filesystem::temp_directory_path() /
+                ("mipgloss_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
 
 // A cube whose texel centres hold f(direction).
 inline CubeMap cubeFromFunction(int size, const std::function<Rgb(const glm::vec3&)>& f) {

@@ -28,29 +28,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// A fresh folder per test, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("mipgloss_envio_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
-                 info->name());
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using test::TempDir;
 
 // Writes interleaved pixels (any OIIO-convertible type) to a file whose format the extension picks.
 void writeImage(const fs::path& file, int w, int h, int channels, OIIO::TypeDesc fileType,

@@ -30,27 +30,7 @@ namespace {
 
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
-// A fresh folder per test, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("mipgloss_mesh_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-    fs::path path_;
-};
+using test::TempDir;
 
 std::string readText(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -709,8 +689,7 @@ namespace {
 
 TEST(MeshExport, WrittenFilesLoadBackAlike) {
     const Mesh sphere = makeSphere(16, 32);
-    const auto dir = std::filesystem::temp_directory_path() / ("mipgloss-write-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const test::TempDir dir;
     for (const char* ext : {".ply", ".obj", ".stl", ".off", ".om"}) {
         const auto file = dir / (std::string("sphere") + ext);
         writeMesh(sphere, file);
@@ -719,7 +698,6 @@ TEST(MeshExport, WrittenFilesLoadBackAlike) {
         EXPECT_NEAR(back.bounds.radius(), sphere.bounds.radius(), 1e-5f) << ext;
     }
     EXPECT_THROW(writeMesh(sphere, dir / "sphere.xyz"), MeshError);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace
