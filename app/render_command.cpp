@@ -226,7 +226,7 @@ int runRender(const std::vector<std::string>& args, const char* argv0) {
             if (pitch) camera.pitchDegrees = *pitch;
             camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
         }
-        const QImage image = renderer.render(scene, camera, environment, 1, width, height);
+        const QImage image = renderer.render(scene, camera, environment, width, height);
         if (image.isNull() || !image.save(QString::fromStdString(outPath->string()))) {
             std::cerr << "mipgloss: error: " << outPath->string() << ": cannot write the image\n";
             return 1;
@@ -279,7 +279,7 @@ int benchOneMesh(const fs::path& path, int frames, int width, int height) {
     }
     OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
     start = std::chrono::steady_clock::now();
-    renderer.render(scene, camera, environment, 1, width, height);
+    renderer.render(scene, camera, environment, width, height);
     renderer.finish();
     const double firstMs = millisecondsSince(start);
     std::cout << "renderer: " << renderer.glDescription() << "\n"
@@ -288,11 +288,11 @@ int benchOneMesh(const fs::path& path, int frames, int width, int height) {
               << "first frame (with upload): " << firstMs << " ms\n";
     for (const int samples : {4, 0}) {
         scene.display.samples = samples;
-        renderer.render(scene, camera, environment, 1, width, height);
+        renderer.render(scene, camera, environment, width, height);
         start = std::chrono::steady_clock::now();
         for (int f = 0; f < frames; ++f) {
             camera.orbit(2.0f, 0.0f);  // a turning view, as when the user drags
-            renderer.render(scene, camera, environment, 1, width, height);
+            renderer.render(scene, camera, environment, width, height);
             renderer.finish();
         }
         std::cout << "frame, " << (samples ? "4x MSAA" : "no MSAA") << ", " << width << "x" << height
@@ -358,11 +358,11 @@ int runRenderBench(const std::vector<std::string>& args, const char* argv0) {
         }
         const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
         auto timeFrames = [&](Scene& s) {
-            renderer.render(s, camera, environment, 1, width, height);  // warm-up: uploads, samplers
+            renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
             renderer.finish();
             const auto start = std::chrono::steady_clock::now();
             for (int f = 0; f < frames; ++f) {
-                renderer.render(s, camera, environment, 1, width, height);
+                renderer.render(s, camera, environment, width, height);
                 renderer.finish();
             }
             return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /

@@ -53,7 +53,7 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
     // less than λ does.
     const int w = 2048, h = 768;
     const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(w) / static_cast<float>(h));
-    const QImage picture = renderer->render(scene, camera, env, 1, w, h);
+    const QImage picture = renderer->render(scene, camera, env, w, h);
     picture.save(QString::fromStdString((test::outputDir() / "figure1.png").string()));
     int rw = 0, rh = 0;
     const auto hdr = renderer->lastHdr(rw, rh);
@@ -126,7 +126,7 @@ TEST(DiffusePicture, IrradianceMapMatchesTheExactConvolutionChainLookupIsMeasure
         camera.yawDegrees = 35.0f;
         camera.pitchDegrees = 30.0f;
         camera.frame(sceneBounds(scene), 1.0f);
-        renderer->render(scene, camera, env, 1, w, h);
+        renderer->render(scene, camera, env, w, h);
         int rw = 0, rh = 0;
         const auto hdr = renderer->lastHdr(rw, rh);
         const glm::mat4 inverse = glm::inverse(camera.projection(1.0f, sceneBounds(scene).radius()) * camera.view());
@@ -166,11 +166,11 @@ TEST(Culling, ObjectsOutsideTheViewAreNotDrawn) {
     const Bounds b{first.worldCentre() - glm::vec3(first.worldRadius()), first.worldCentre() + glm::vec3(first.worldRadius())};
     camera.frame(b, 1.0f);
     camera.zoom(0.4f);  // bounding spheres are loose: come close enough that the neighbours' miss
-    renderer->render(scene, camera, env, 1, 256, 256);
+    renderer->render(scene, camera, env, 256, 256);
     EXPECT_EQ(renderer->counters().objectsDrawn, 1u);
     EXPECT_EQ(renderer->counters().objectsCulled, 3u);
     scene.objects[0].visible = false;
-    renderer->render(scene, camera, env, 1, 256, 256);
+    renderer->render(scene, camera, env, 256, 256);
     EXPECT_EQ(renderer->counters().objectsDrawn, 0u) << "hidden objects are not drawn";
 }
 
@@ -195,7 +195,7 @@ TEST(GrazingOption, SharpensTheRimAndLeavesTheCentre) {
         scene.display.showBackground = false;
         scene.display.samples = 0;
         camera.frame(sceneBounds(scene), 1.0f);
-        const QImage picture = renderer->render(scene, camera, env, 1, w, h);
+        const QImage picture = renderer->render(scene, camera, env, w, h);
         picture.save(QString::fromStdString((test::outputDir() / (grazing ? "grazing_on.png" : "grazing_off.png")).string()));
         int rw = 0, rh = 0;
         pictures.push_back(renderer->lastHdr(rw, rh));
@@ -259,7 +259,7 @@ SeamMeasure seamsOfDiffuseSphere(const std::string& builder, float lambda, QImag
     camera.yawDegrees = 35.0f;  // three faces and their shared edges in view
     camera.pitchDegrees = 30.0f;
     camera.frame(sceneBounds(scene), 1.0f);
-    *picture = renderer->render(scene, camera, env, 1, w, h);
+    *picture = renderer->render(scene, camera, env, w, h);
     int rw = 0, rh = 0;
     const auto hdr = renderer->lastHdr(rw, rh);
     const glm::mat4 inverse = glm::inverse(camera.projection(1.0f, sceneBounds(scene).radius()) * camera.view());

@@ -59,7 +59,7 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     camera.pitchDegrees = 20.0f;
     camera.frame(sceneBounds(scene), 1.0f);
     const auto env = courtyard();
-    renderer->render(scene, camera, env, 1, w, h);
+    renderer->render(scene, camera, env, w, h);
     int rw = 0, rh = 0;
     const std::vector<glm::vec4> gpu = renderer->lastHdr(rw, rh);
     ASSERT_EQ(rw, w);

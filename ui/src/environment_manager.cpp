@@ -74,7 +74,6 @@ void EnvironmentManager::startJob() {
     haveRequest_ = false;
     busy_ = true;
     emit busyChanged(true);
-    const std::uint64_t jobId = ++jobCounter_;
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     cancelRunning_ = cancel;
     const EnvironmentSettings settings = wantedSettings_;
@@ -86,7 +85,6 @@ void EnvironmentManager::startJob() {
     (void)QtConcurrent::run(&workerPool(), [=] {
         std::shared_ptr<PreparedEnvironment> result;
         QString error;
-        bool chainBuilt = false, irradianceBuilt = false, imported = false;
         try {
             auto progress = [&](const std::string& stage, float fraction) {
                 if (*cancel) return false;
@@ -99,9 +97,6 @@ void EnvironmentManager::startJob() {
             };
             result = std::make_shared<PreparedEnvironment>(
                 prepareEnvironment(settings, needs, previous.get(), progress));
-            imported = !previous || result->base != previous->base;
-            chainBuilt = !previous || result->chain != previous->chain;
-            irradianceBuilt = result->irradiance && (!previous || result->irradiance != previous->irradiance);
         } catch (const BuildCancelled&) {
             result.reset();
         } catch (const std::exception& e) {
@@ -110,16 +105,13 @@ void EnvironmentManager::startJob() {
         }
         QMetaObject::invokeMethod(
             self, [=] {
-                if (self) self->onJobFinished(jobId, result, error, chainBuilt, irradianceBuilt, imported);
+                if (self) self->onJobFinished(result, error);
             },
             Qt::QueuedConnection);
     });
 }
 
-void EnvironmentManager::onJobFinished(std::uint64_t jobId, std::shared_ptr<PreparedEnvironment> result,
-                                       const QString& error, bool chainBuilt, bool irradianceBuilt,
-                                       bool imported) {
-    (void)jobId;
+void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error) {
     if (!error.isEmpty()) {
         ++counters_.failures;
         failedSettings_ = runningSettings_;  // not wantedSettings_: a newer request may be queued
@@ -127,12 +119,14 @@ void EnvironmentManager::onJobFinished(std::uint64_t jobId, std::shared_ptr<Prep
         std::cerr << "mipgloss: " << error.toStdString() << '\n';
         emit failed(error);
     } else if (result) {
-        counters_.imports += imported ? 1 : 0;
-        counters_.chainBuilds += chainBuilt ? 1 : 0;
-        counters_.irradianceBuilds += irradianceBuilt ? 1 : 0;
+        // What the job made rather than reused from current_ (jobs run one at a time, and only
+        // this function replaces current_, so current_ is what the job started from).
+        const PreparedEnvironment* before = current_.get();
+        counters_.imports += !before || result->base != before->base ? 1 : 0;
+        counters_.chainBuilds += !before || result->chain != before->chain ? 1 : 0;
+        counters_.irradianceBuilds += result->irradiance && (!before || result->irradiance != before->irradiance) ? 1 : 0;
         current_ = std::move(result);
         haveFailed_ = false;
-        ++version_;
         emit environmentReady();
     }
     cancelRunning_.reset();

@@ -45,7 +45,7 @@ bool OffscreenRenderer::initialize(std::string* error) {
 
 QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
                                  const std::shared_ptr<const PreparedEnvironment>& environment,
-                                 std::uint64_t environmentVersion, int width, int height) {
+                                 int width, int height) {
     Impl& d = *impl_;
     if (!d.ready || !d.context.makeCurrent(&d.surface)) return {};
     if (!d.fbo || d.fbo->width() != width || d.fbo->height() != height) {
@@ -53,7 +53,7 @@ QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
         format.setInternalTextureFormat(GL_RGBA8);
         d.fbo = std::make_unique<QOpenGLFramebufferObject>(width, height, format);
     }
-    d.renderer.setEnvironment(environment, environmentVersion);
+    d.renderer.setEnvironment(environment);
     d.renderer.render(scene, camera, width, height, d.fbo->handle());
     return d.fbo->toImage(true).convertToFormat(QImage::Format_RGB32);
 }

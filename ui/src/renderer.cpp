@@ -50,7 +50,6 @@ struct Renderer::Impl {
     GLuint irradianceTexture = 0;
     int environmentLevels = 0;
     int environmentFaceSize = 0;
-    std::uint64_t environmentVersion = 0;
     const CubeMap* uploadedIrradiance = nullptr;
     std::shared_ptr<const PreparedEnvironment> environment;  // keeps what is uploaded alive
 
@@ -299,11 +298,9 @@ void Renderer::destroy() {
     d.gl = nullptr;
 }
 
-void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment,
-                              std::uint64_t version) {
+void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment) {
     Impl& d = *impl_;
-    if (!d.gl || !environment || !environment->chain) return;
-    if (d.environment == environment && version == d.environmentVersion) return;
+    if (!d.gl || !environment || !environment->chain || d.environment == environment) return;
     // The chain is uploaded only when it is a different chain (a new irradiance map alone
     // uploads just that).
     if (!d.environment || d.environment->chain != environment->chain) {
@@ -320,7 +317,6 @@ void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& 
         ++d.counters.irradianceUploads;
     }
     d.environment = environment;
-    d.environmentVersion = version;
 }
 
 void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, int height,

@@ -59,7 +59,7 @@ void Viewport::resizeGL(int, int) {}
 void Viewport::paintGL() {
     if (!renderer_->isInitialized()) return;
     if (!framedOnce_ && document_->objectCount() > 0) frameAll();
-    renderer_->setEnvironment(environments_->current(), environments_->version());
+    renderer_->setEnvironment(environments_->current());
     const qreal ratio = devicePixelRatio();
     const int w = static_cast<int>(std::lround(width() * ratio));
     const int h = static_cast<int>(std::lround(height() * ratio));

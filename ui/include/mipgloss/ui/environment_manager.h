@@ -36,10 +36,9 @@ public:
     // Makes sure the environment satisfies (settings, needs); starts a job if it does not.
     void request(const EnvironmentSettings& settings, const ChainNeeds& needs);
 
-    // The environment to draw with; null until the first one is ready. `version` increases with
-    // every new chain or irradiance map, so the renderer uploads only when it changes.
+    // The environment to draw with; null until the first one is ready. Every new chain or
+    // irradiance map comes as a new object, so the renderer uploads only when the pointer changes.
     std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
-    std::uint64_t version() const { return version_; }
 
     bool busy() const { return busy_; }
 
@@ -63,18 +62,15 @@ signals:
 
 private:
     void startJob();
-    void onJobFinished(std::uint64_t jobId, std::shared_ptr<PreparedEnvironment> result,
-                       const QString& error, bool chainBuilt, bool irradianceBuilt, bool imported);
+    void onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error);
 
     SceneDocument* document_ = nullptr;
     std::shared_ptr<const PreparedEnvironment> current_;
-    std::uint64_t version_ = 0;
     EnvironmentSettings wantedSettings_;
     EnvironmentSettings runningSettings_;
     ChainNeeds wantedNeeds_;
     bool haveRequest_ = false;
     bool busy_ = false;
-    std::uint64_t jobCounter_ = 0;
     std::shared_ptr<std::atomic<bool>> cancelRunning_;
     EnvironmentCounters counters_;
     // Last request that failed, so the same bad file is not retried on every scene change.

@@ -20,11 +20,10 @@ public:
     // Creates the context; false with `error` when no 4.1 core context can be made.
     bool initialize(std::string* error);
 
-    // Renders `scene` (environment uploaded from `environment` if its version changed) and returns
-    // the tone-mapped sRGB picture.
+    // Renders `scene` (uploading `environment` if it is not the one drawn last) and returns the
+    // tone-mapped sRGB picture.
     QImage render(const Scene& scene, const OrbitCamera& camera,
-                  const std::shared_ptr<const PreparedEnvironment>& environment,
-                  std::uint64_t environmentVersion, int width, int height);
+                  const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height);
 
     // The linear HDR colour of the last render (RGBA, bottom row first); see Renderer::readHdr.
     std::vector<glm::vec4> lastHdr(int& width, int& height);

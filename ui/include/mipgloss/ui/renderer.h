@@ -48,9 +48,9 @@ public:
     void destroy();
     bool isInitialized() const;
 
-    // Uploads the environment's chain (and irradiance) if `version` differs from the last one.
-    void setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment,
-                        std::uint64_t version);
+    // Uploads the environment's chain (and irradiance map) when it is not the one uploaded last.
+    // A PreparedEnvironment never changes once made, so its identity is its version.
+    void setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment);
     bool hasEnvironment() const;
 
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.
