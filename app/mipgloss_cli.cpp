@@ -7,6 +7,8 @@
 #include "mipgloss/metrics.h"
 #include "mipgloss/phong.h"
 
+#include "cli_args.h"
+
 #ifdef MIPGLOSS_WITH_UI
 #include "render_command.h"
 #endif
@@ -28,6 +30,8 @@
 
 namespace fs = std::filesystem;
 using namespace mipgloss;
+using mipgloss::app::Args;
+using mipgloss::app::UsageError;
 
 namespace {
 
@@ -74,9 +78,6 @@ bench: times every builder at each face size and prints, per level, the relative
 Exit status: 0 on success, 1 on bad input (the message names the file), 2 on bad usage.
 )";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
 
 std::vector<std::string> splitList(const std::string& s) {
     std::vector<std::string> out;
@@ -95,22 +96,6 @@ int parsePositive(const std::string& flag, const std::string& value) {
     return static_cast<int>(v);
 }
 
-class Args {
-public:
-    Args(int argc, char** argv, int first) {
-        for (int i = first; i < argc; ++i) items_.emplace_back(argv[i]);
-    }
-    bool empty() const { return pos_ >= items_.size(); }
-    std::string next() { return items_[pos_++]; }
-    std::string value(const std::string& flag) {
-        if (empty()) throw UsageError(flag + " needs a value");
-        return next();
-    }
-
-private:
-    std::vector<std::string> items_;
-    std::size_t pos_ = 0;
-};
 
 int runBake(Args args) {
     BakeRequest req;
@@ -283,17 +268,13 @@ int main(int argc, char** argv) {
         if (cmd == "bake") return runBake(Args(argc, argv, 2));
         if (cmd == "bench") return runBench(Args(argc, argv, 2));
 #ifdef MIPGLOSS_WITH_UI
-        const std::vector<std::string> rest(argv + 2, argv + argc);
-        if (cmd == "render") return app::runRender(rest, argv[0]);
-        if (cmd == "bench-render") return app::runRenderBench(rest, argv[0]);
+        if (cmd == "render") return app::runRender(Args(argc, argv, 2), argv[0]);
+        if (cmd == "bench-render") return app::runRenderBench(Args(argc, argv, 2), argv[0]);
 #endif
         throw UsageError("unknown command '" + cmd + "'");
     } catch (const UsageError& e) {
         std::cerr << "mipgloss: " << e.what() << "\n(see mipgloss --help)\n";
         return 2;
-    } catch (const EnvError& e) {
-        std::cerr << "mipgloss: error: " << e.what() << "\n";
-        return 1;
     } catch (const std::exception& e) {
         std::cerr << "mipgloss: error: " << e.what() << "\n";
         return 1;

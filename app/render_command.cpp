@@ -58,10 +58,6 @@ bench-render: frame time of N teapots with N different lambdas against the same 
 
 namespace {
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 bool parseSize(const std::string& text, int& w, int& h) {
     const auto x = text.find('x');
     if (x == std::string::npos) return false;
@@ -91,164 +87,154 @@ bool haveDisplay() {
     return std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
 }
 
-struct GuiSession {
-    int argc = 1;
-    char* argv[2];
-    std::unique_ptr<QGuiApplication> app;
-    explicit GuiSession(const char* argv0) {
-        argv[0] = const_cast<char*>(argv0);
-        argv[1] = nullptr;
+// A Qt application and an offscreen OpenGL context, for as long as the command runs. Throws when
+// there is no display (Qt would abort) or no OpenGL 4.1 core context.
+class OffscreenSession {
+public:
+    OffscreenSession(const char* argv0, const std::string& command) {
+        if (!haveDisplay())
+            throw std::runtime_error(command + " needs an X display for OpenGL (DISPLAY is not set); run it as: "
+                                     "xvfb-run -a mipgloss " + command + " ...");
+        argv_[0] = const_cast<char*>(argv0);
         ui::setDefaultSurfaceFormat();
-        app = std::make_unique<QGuiApplication>(argc, argv);
+        app_ = std::make_unique<QGuiApplication>(argc_, argv_);
+        renderer_ = std::make_unique<ui::OffscreenRenderer>();
+        std::string error;
+        if (!renderer_->initialize(&error)) throw std::runtime_error(error);
     }
+    ~OffscreenSession() { renderer_.reset(); }  // GL teardown while the application exists
+    ui::OffscreenRenderer& renderer() { return *renderer_; }
+
+private:
+    int argc_ = 1;
+    char* argv_[2] = {nullptr, nullptr};
+    std::unique_ptr<QGuiApplication> app_;
+    std::unique_ptr<ui::OffscreenRenderer> renderer_;
 };
 
 }  // namespace
 
-int runRender(const std::vector<std::string>& args, const char* argv0) {
-    try {
-        std::optional<fs::path> scenePath, envPath, outPath;
-        std::vector<fs::path> meshPaths;
-        std::optional<float> lambda, exposure, backgroundLambda, yaw, pitch;
-        std::optional<LookupMode> mode;
-        std::optional<ToneMap> toneMap;
-        std::optional<int> envSize, samples;
-        std::optional<std::string> method;
-        bool noBackground = false, quiet = false;
-        int width = 0, height = 0;
-        for (std::size_t i = 0; i < args.size(); ++i) {
-            const std::string& a = args[i];
-            auto value = [&]() -> const std::string& {
-                if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-                return args[++i];
-            };
-            if (a == "--env") envPath = value();
-            else if (a == "--mesh") meshPaths.emplace_back(value());
-            else if (a == "--out") outPath = value();
-            else if (a == "--lambda") lambda = parseFloat(a, value(), 0.0f, kMaxLambda);
-            else if (a == "--exposure") exposure = parseFloat(a, value(), -20.0f, 20.0f);
-            else if (a == "--background-lambda") backgroundLambda = parseFloat(a, value(), 0.0f, kMaxLambda);
-            else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
-            else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
-            else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
-            else if (a == "--samples") samples = static_cast<int>(parseFloat(a, value(), 0.0f, 16.0f));
-            else if (a == "--method") {
-                method = value();
-                if (!isBuilderName(*method)) throw UsageError("unknown method '" + *method + "'");
-            } else if (a == "--mode") {
-                LookupMode m;
-                if (!parseLookupMode(value(), m)) throw UsageError("--mode is reflect or normal");
-                mode = m;
-            } else if (a == "--tonemap") {
-                ToneMap t;
-                if (!parseToneMap(value(), t)) throw UsageError("--tonemap is linear, reinhard or aces");
-                toneMap = t;
-            } else if (a == "--size") {
-                if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH, e.g. 800x600");
-            } else if (a == "--no-background") noBackground = true;
-            else if (a == "--quiet") quiet = true;
-            else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-            else if (!scenePath) scenePath = a;
-            else throw UsageError("more than one scene given");
-        }
-        if (!outPath) throw UsageError("render needs --out IMAGE");
-        if (!haveDisplay()) {
-            std::cerr << "mipgloss: error: render needs an X display for OpenGL (DISPLAY is not set); "
-                         "run it as: xvfb-run -a mipgloss render ...\n";
-            return 1;
-        }
-        GuiSession session(argv0);
+int runRender(Args args, const char* argv0) {
+    std::optional<fs::path> scenePath, envPath, outPath;
+    std::vector<fs::path> meshPaths;
+    std::optional<float> lambda, exposure, backgroundLambda, yaw, pitch;
+    std::optional<LookupMode> mode;
+    std::optional<ToneMap> toneMap;
+    std::optional<int> envSize, samples;
+    std::optional<std::string> method;
+    bool noBackground = false, quiet = false;
+    int width = 0, height = 0;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        auto value = [&] { return args.value(a); };
+        if (a == "--env") envPath = value();
+        else if (a == "--mesh") meshPaths.emplace_back(value());
+        else if (a == "--out") outPath = value();
+        else if (a == "--lambda") lambda = parseFloat(a, value(), 0.0f, kMaxLambda);
+        else if (a == "--exposure") exposure = parseFloat(a, value(), -20.0f, 20.0f);
+        else if (a == "--background-lambda") backgroundLambda = parseFloat(a, value(), 0.0f, kMaxLambda);
+        else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
+        else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
+        else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
+        else if (a == "--samples") samples = static_cast<int>(parseFloat(a, value(), 0.0f, 16.0f));
+        else if (a == "--method") {
+            method = value();
+            if (!isBuilderName(*method)) throw UsageError("unknown method '" + *method + "'");
+        } else if (a == "--mode") {
+            LookupMode m;
+            if (!parseLookupMode(value(), m)) throw UsageError("--mode is reflect or normal");
+            mode = m;
+        } else if (a == "--tonemap") {
+            ToneMap t;
+            if (!parseToneMap(value(), t)) throw UsageError("--tonemap is linear, reinhard or aces");
+            toneMap = t;
+        } else if (a == "--size") {
+            if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH, e.g. 800x600");
+        } else if (a == "--no-background") noBackground = true;
+        else if (a == "--quiet") quiet = true;
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (!scenePath) scenePath = a;
+        else throw UsageError("more than one scene given");
+    }
+    if (!outPath) throw UsageError("render needs --out IMAGE");
+    OffscreenSession session(argv0, "render");
+    ui::OffscreenRenderer& renderer = session.renderer();
 
-        // The scene: a file, meshes, the environment alone, or the default.
-        Scene scene;
-        if (scenePath) {
-            ui::SceneFileReport report;
-            scene = ui::loadScene(*scenePath, &report);
+    // The scene: a file, meshes, the environment alone, or the default.
+    Scene scene;
+    if (scenePath) {
+        ui::SceneFileReport report;
+        scene = ui::loadScene(*scenePath, &report);
+        if (!quiet)
+            for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    } else if (!meshPaths.empty() || envPath) {
+        scene.display = DisplaySettings{};
+    } else {
+        scene = makeFigure1Scene();
+        if (width == 0) width = 1024, height = 384;
+    }
+    if (!meshPaths.empty()) {
+        scene.objects.clear();
+        float cursor = 0.0f;
+        for (const fs::path& p : meshPaths) {
+            MeshReport report;
+            auto mesh = std::make_shared<const Mesh>(loadMesh(p, &report));
             if (!quiet)
                 for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
-        } else if (!meshPaths.empty() || envPath) {
-            scene.display = DisplaySettings{};
-        } else {
-            scene = makeFigure1Scene();
-            if (width == 0) width = 1024, height = 384;
+            SceneObject object;
+            object.name = mesh->name;
+            object.meshSource = p.string();
+            // In a row along x, each moved so its bounds' centre sits on the row.
+            const float r = mesh->bounds.radius();
+            object.transform.translation = glm::vec3(cursor + r, 0.0f, 0.0f) - mesh->bounds.centre();
+            cursor += 2.2f * r;
+            object.mesh = std::move(mesh);
+            scene.objects.push_back(std::move(object));
         }
-        if (!meshPaths.empty()) {
-            scene.objects.clear();
-            float cursor = 0.0f;
-            for (const fs::path& p : meshPaths) {
-                MeshReport report;
-                auto mesh = std::make_shared<const Mesh>(loadMesh(p, &report));
-                if (!quiet)
-                    for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
-                SceneObject object;
-                object.name = mesh->name;
-                object.meshSource = p.string();
-                // In a row along x, each moved so its bounds' centre sits on the row.
-                const float r = mesh->bounds.radius();
-                object.transform.translation = glm::vec3(cursor + r, 0.0f, 0.0f) - mesh->bounds.centre();
-                cursor += 2.2f * r;
-                object.mesh = std::move(mesh);
-                scene.objects.push_back(std::move(object));
-            }
-        }
-        if (envPath) scene.environment.source = envPath->string();
-        if (envSize) scene.environment.faceSize = *envSize;
-        if (method) scene.environment.builder = *method;
-        for (SceneObject& o : scene.objects) {
-            if (lambda) o.material.lambda = *lambda;
-            if (mode) o.material.mode = *mode;
-        }
-        if (exposure) scene.display.exposureEv = *exposure;
-        if (toneMap) scene.display.toneMap = *toneMap;
-        if (backgroundLambda) scene.display.backgroundLambda = *backgroundLambda;
-        if (noBackground) scene.display.showBackground = false;
-        if (samples) scene.display.samples = *samples;
-        if (width == 0) width = 800, height = 600;
-
-        const auto start = std::chrono::steady_clock::now();
-        auto environment = std::make_shared<const PreparedEnvironment>(
-            prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-        const double prepareSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!quiet)
-            for (const std::string& w : environment->report.warnings)
-                std::cerr << "mipgloss: warning: " << w << '\n';
-
-        ui::OffscreenRenderer renderer;
-        std::string error;
-        if (!renderer.initialize(&error)) {
-            std::cerr << "mipgloss: error: " << error << '\n';
-            return 1;
-        }
-        OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
-        if (yaw || pitch) {
-            if (yaw) camera.yawDegrees = *yaw;
-            if (pitch) camera.pitchDegrees = *pitch;
-            camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
-        }
-        const QImage image = renderer.render(scene, camera, environment, width, height);
-        if (image.isNull() || !image.save(QString::fromStdString(outPath->string()))) {
-            std::cerr << "mipgloss: error: " << outPath->string() << ": cannot write the image\n";
-            return 1;
-        }
-        if (!quiet) {
-            const ui::RenderCounters& c = renderer.counters();
-            std::cerr << "mipgloss: " << outPath->string() << ": " << width << "x" << height << ", "
-                      << scene.objects.size() << " objects (" << c.objectsDrawn << " drawn, "
-                      << c.objectsCulled << " culled), environment " << environment->settings.faceSize
-                      << "² " << environment->settings.builder << " filtered through level "
-                      << environment->filteredThrough << " of " << environment->levelCount() - 1
-                      << (environment->irradiance ? ", irradiance" : "") << ", prepared in "
-                      << prepareSeconds << " s; " << renderer.glDescription() << '\n';
-        }
-        return 0;
-    } catch (const UsageError& e) {
-        std::cerr << "mipgloss: " << e.what() << "\n(see mipgloss --help)\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "mipgloss: error: " << e.what() << '\n';
-        return 1;
     }
+    if (envPath) scene.environment.source = envPath->string();
+    if (envSize) scene.environment.faceSize = *envSize;
+    if (method) scene.environment.builder = *method;
+    for (SceneObject& o : scene.objects) {
+        if (lambda) o.material.lambda = *lambda;
+        if (mode) o.material.mode = *mode;
+    }
+    if (exposure) scene.display.exposureEv = *exposure;
+    if (toneMap) scene.display.toneMap = *toneMap;
+    if (backgroundLambda) scene.display.backgroundLambda = *backgroundLambda;
+    if (noBackground) scene.display.showBackground = false;
+    if (samples) scene.display.samples = *samples;
+    if (width == 0) width = 800, height = 600;
+
+    const auto start = std::chrono::steady_clock::now();
+    auto environment = std::make_shared<const PreparedEnvironment>(
+        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+    const double prepareSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!quiet)
+        for (const std::string& w : environment->report.warnings)
+            std::cerr << "mipgloss: warning: " << w << '\n';
+
+    OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    if (yaw || pitch) {
+        if (yaw) camera.yawDegrees = *yaw;
+        if (pitch) camera.pitchDegrees = *pitch;
+        camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
+    }
+    const QImage image = renderer.render(scene, camera, environment, width, height);
+    if (image.isNull() || !image.save(QString::fromStdString(outPath->string())))
+        throw std::runtime_error(outPath->string() + ": cannot write the image");
+    if (!quiet) {
+        const ui::RenderCounters& c = renderer.counters();
+        std::cerr << "mipgloss: " << outPath->string() << ": " << width << "x" << height << ", "
+                  << scene.objects.size() << " objects (" << c.objectsDrawn << " drawn, "
+                  << c.objectsCulled << " culled), environment " << environment->settings.faceSize
+                  << "² " << environment->settings.builder << " filtered through level "
+                  << environment->filteredThrough << " of " << environment->levelCount() - 1
+                  << (environment->irradiance ? ", irradiance" : "") << ", prepared in "
+                  << prepareSeconds << " s; " << renderer.glDescription() << '\n';
+    }
+    return 0;
 }
 
 namespace {
@@ -259,7 +245,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 // A big mesh: load time, first frame (with the upload) and steady frame time, with and without
 // multisampling: is it interactive?
-int benchOneMesh(const fs::path& path, int frames, int width, int height) {
+int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int frames, int width, int height) {
     auto start = std::chrono::steady_clock::now();
     auto mesh = std::make_shared<const Mesh>(loadMesh(path));
     const double loadMs = millisecondsSince(start);
@@ -271,12 +257,6 @@ int benchOneMesh(const fs::path& path, int frames, int width, int height) {
     scene.objects.push_back(object);
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-    ui::OffscreenRenderer renderer;
-    std::string error;
-    if (!renderer.initialize(&error)) {
-        std::cerr << "mipgloss: error: " << error << '\n';
-        return 1;
-    }
     OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
     start = std::chrono::steady_clock::now();
     renderer.render(scene, camera, environment, width, height);
@@ -303,107 +283,87 @@ int benchOneMesh(const fs::path& path, int frames, int width, int height) {
 
 }  // namespace
 
-int runRenderBench(const std::vector<std::string>& args, const char* argv0) {
-    try {
-        int objects = 16, frames = 20, width = 960, height = 540;
-        std::optional<fs::path> meshPath;
-        bool million = false;
-        for (std::size_t i = 0; i < args.size(); ++i) {
-            const std::string& a = args[i];
-            auto value = [&]() -> const std::string& {
-                if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-                return args[++i];
-            };
-            if (a == "--mesh") meshPath = value();
-            else if (a == "--million") million = true;
-            else if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
-            else if (a == "--frames") frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
-            else if (a == "--size") {
-                if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH");
-            } else throw UsageError("unknown option '" + a + "'");
-        }
-        if (!haveDisplay()) {
-            std::cerr << "mipgloss: error: bench-render needs an X display (xvfb-run -a ...)\n";
-            return 1;
-        }
-        GuiSession session(argv0);
-        if (million) {
-            // A 1M-triangle sphere written as binary PLY, then loaded like any user file.
-            const fs::path file = fs::temp_directory_path() / ("mipgloss-million-" + std::to_string(::getpid()) + ".ply");
-            writeMesh(makeSphere(500, 1000), file);
-            const int status = benchOneMesh(file, frames, width, height);
-            fs::remove(file);
-            return status;
-        }
-        if (meshPath) return benchOneMesh(*meshPath, frames, width, height);
-        Scene scene;
-        auto teapot = std::make_shared<const Mesh>(defaultTeapot());
-        const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(objects))));
-        const float spacing = 2.3f * teapot->bounds.radius();
-        for (int i = 0; i < objects; ++i) {
-            SceneObject o;
-            o.name = "teapot " + std::to_string(i);
-            o.mesh = teapot;
-            o.transform.translation = glm::vec3(static_cast<float>(i % columns) * spacing,
-                                                static_cast<float>(i / columns) * spacing, 0.0f);
-            scene.objects.push_back(std::move(o));
-        }
-        auto environment = std::make_shared<const PreparedEnvironment>(
-            prepareEnvironment(scene.environment, ChainNeeds{7, false}));
-        ui::OffscreenRenderer renderer;
-        std::string error;
-        if (!renderer.initialize(&error)) {
-            std::cerr << "mipgloss: error: " << error << '\n';
-            return 1;
-        }
-        const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
-        auto timeFrames = [&](Scene& s) {
-            renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
-            renderer.finish();
-            const auto start = std::chrono::steady_clock::now();
-            for (int f = 0; f < frames; ++f) {
-                renderer.render(s, camera, environment, width, height);
-                renderer.finish();
-            }
-            return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-                   frames;
-        };
-        std::cout << "renderer: " << renderer.glDescription() << "\n"
-                  << objects << " teapots (" << objects * teapot->triangleCount() << " triangles), "
-                  << width << "x" << height << ", " << frames << " frames each, glFinish per frame\n";
-        // Three cases, interleaved three times, medians kept (the VM's timing noise is large):
-        //   shared   every object λ = 3 (one sampler)
-        //   distinct λ = 3 + i/512: one sampler per object, the same levels sampled, so the
-        //            difference is the per-object state change alone (the paper's claim)
-        //   spread   λ from 0 to 7: also what the texture cache sees changes
-        auto setLambdas = [&](auto lambdaOf) {
-            for (int i = 0; i < objects; ++i)
-                scene.objects[static_cast<std::size_t>(i)].material.lambda = lambdaOf(i);
-        };
-        std::vector<double> shared, distinct, spread;
-        for (int round = 0; round < 3; ++round) {
-            setLambdas([](int) { return 3.0f; });
-            shared.push_back(timeFrames(scene));
-            setLambdas([](int i) { return 3.0f + static_cast<float>(i) / 512.0f; });
-            distinct.push_back(timeFrames(scene));
-            setLambdas([&](int i) { return 7.0f * static_cast<float>(i) / static_cast<float>(std::max(objects - 1, 1)); });
-            spread.push_back(timeFrames(scene));
-        }
-        for (auto* v : {&shared, &distinct, &spread}) std::sort(v->begin(), v->end());
-        std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
-                  << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
-                  << distinct[1] / shared[1] << "\n"
-                  << objects << " lambdas spread over 0..7:   " << spread[1] << " ms/frame  ratio "
-                  << spread[1] / shared[1] << "\n"
-                  << "samplers created: " << renderer.counters().samplersCreated << "\n";
-        return 0;
-    } catch (const UsageError& e) {
-        std::cerr << "mipgloss: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "mipgloss: error: " << e.what() << '\n';
-        return 1;
+int runRenderBench(Args args, const char* argv0) {
+    int objects = 16, frames = 20, width = 960, height = 540;
+    std::optional<fs::path> meshPath;
+    bool million = false;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        auto value = [&] { return args.value(a); };
+        if (a == "--mesh") meshPath = value();
+        else if (a == "--million") million = true;
+        else if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
+        else if (a == "--frames") frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
+        else if (a == "--size") {
+            if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH");
+        } else throw UsageError("unknown option '" + a + "'");
     }
+    OffscreenSession session(argv0, "bench-render");
+    ui::OffscreenRenderer& renderer = session.renderer();
+    if (million) {
+        // A 1M-triangle sphere written as binary PLY, then loaded like any user file.
+        const fs::path file = fs::temp_directory_path() / ("mipgloss-million-" + std::to_string(::getpid()) + ".ply");
+        writeMesh(makeSphere(500, 1000), file);
+        const int status = benchOneMesh(renderer, file, frames, width, height);
+        fs::remove(file);
+        return status;
+    }
+    if (meshPath) return benchOneMesh(renderer, *meshPath, frames, width, height);
+    Scene scene;
+    auto teapot = std::make_shared<const Mesh>(defaultTeapot());
+    const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(objects))));
+    const float spacing = 2.3f * teapot->bounds.radius();
+    for (int i = 0; i < objects; ++i) {
+        SceneObject o;
+        o.name = "teapot " + std::to_string(i);
+        o.mesh = teapot;
+        o.transform.translation = glm::vec3(static_cast<float>(i % columns) * spacing,
+                                            static_cast<float>(i / columns) * spacing, 0.0f);
+        scene.objects.push_back(std::move(o));
+    }
+    auto environment = std::make_shared<const PreparedEnvironment>(
+        prepareEnvironment(scene.environment, ChainNeeds{7, false}));
+    const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    auto timeFrames = [&](Scene& s) {
+        renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
+        renderer.finish();
+        const auto start = std::chrono::steady_clock::now();
+        for (int f = 0; f < frames; ++f) {
+            renderer.render(s, camera, environment, width, height);
+            renderer.finish();
+        }
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+               frames;
+    };
+    std::cout << "renderer: " << renderer.glDescription() << "\n"
+              << objects << " teapots (" << objects * teapot->triangleCount() << " triangles), "
+              << width << "x" << height << ", " << frames << " frames each, glFinish per frame\n";
+    // Three cases, interleaved three times, medians kept (the VM's timing noise is large):
+    //   shared   every object λ = 3 (one sampler)
+    //   distinct λ = 3 + i/512: one sampler per object, the same levels sampled, so the
+    //            difference is the per-object state change alone (the paper's claim)
+    //   spread   λ from 0 to 7: also what the texture cache sees changes
+    auto setLambdas = [&](auto lambdaOf) {
+        for (int i = 0; i < objects; ++i)
+            scene.objects[static_cast<std::size_t>(i)].material.lambda = lambdaOf(i);
+    };
+    std::vector<double> shared, distinct, spread;
+    for (int round = 0; round < 3; ++round) {
+        setLambdas([](int) { return 3.0f; });
+        shared.push_back(timeFrames(scene));
+        setLambdas([](int i) { return 3.0f + static_cast<float>(i) / 512.0f; });
+        distinct.push_back(timeFrames(scene));
+        setLambdas([&](int i) { return 7.0f * static_cast<float>(i) / static_cast<float>(std::max(objects - 1, 1)); });
+        spread.push_back(timeFrames(scene));
+    }
+    for (auto* v : {&shared, &distinct, &spread}) std::sort(v->begin(), v->end());
+    std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
+              << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
+              << distinct[1] / shared[1] << "\n"
+              << objects << " lambdas spread over 0..7:   " << spread[1] << " ms/frame  ratio "
+              << spread[1] / shared[1] << "\n"
+              << "samplers created: " << renderer.counters().samplersCreated << "\n";
+    return 0;
 }
 
 }  // namespace mipgloss::app

@@ -1,14 +1,14 @@
 // `mipgloss render` and `mipgloss bench-render`: the Qt renderer offscreen. Only built with the UI.
 #pragma once
 
-#include <string>
-#include <vector>
+#include "cli_args.h"
 
 namespace mipgloss::app {
 
-// Both return the process exit status (0 ok, 1 bad input, 2 bad usage) and print their own errors.
-int runRender(const std::vector<std::string>& args, const char* argv0);
-int runRenderBench(const std::vector<std::string>& args, const char* argv0);
+// Both return 0, or throw: UsageError for bad usage, anything else for bad input or no OpenGL
+// (main() prints the message and exits with 2 or 1).
+int runRender(Args args, const char* argv0);
+int runRenderBench(Args args, const char* argv0);
 
 extern const char* const kRenderUsage;
 
