@@ -29,10 +29,11 @@ glm::mat4 OrbitCamera::view() const {
     return glm::lookAt(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
-glm::mat4 OrbitCamera::projection(float aspect, float sceneRadius) const {
+glm::mat4 OrbitCamera::projection(float aspect, const Bounds& scene) const {
     // Depth range: from just in front of the scene's near side to past its far side, with the
     // near plane never closer than 1/1000 of the distance (24-bit depth keeps ~10 bits there).
-    const float radius = std::max(sceneRadius, 1e-6f);
+    // The scene reaches this far from the target.
+    const float radius = std::max(glm::length(target - scene.centre()) + scene.radius(), 1e-6f);
     const float nearPlane = std::max(distance - 2.0f * radius, distance * 1e-3f);
     const float farPlane = distance + 2.0f * radius + nearPlane;
     return glm::perspective(glm::radians(fovYDegrees), std::max(aspect, 1e-3f), nearPlane, farPlane);

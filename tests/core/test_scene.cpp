@@ -21,7 +21,7 @@ namespace {
 
 // The largest |NDC| coordinate of the box's corners seen by the camera.
 float largestNdc(const OrbitCamera& camera, const Bounds& b, float aspect) {
-    const glm::mat4 vp = camera.projection(aspect, b.radius()) * camera.view();
+    const glm::mat4 vp = camera.projection(aspect, b) * camera.view();
     float largest = 0.0f;
     for (int corner = 0; corner < 8; ++corner) {
         const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
@@ -69,7 +69,7 @@ TEST(Frustum, CullsSpheresWhollyOutsideOnly) {
     OrbitCamera camera;
     camera.target = glm::vec3(0.0f);
     camera.distance = 10.0f;
-    const Frustum f = Frustum::fromViewProjection(camera.projection(1.0f, 2.0f) * camera.view());
+    const Frustum f = Frustum::fromViewProjection(camera.projection(1.0f, Bounds{glm::vec3(-1.2f), glm::vec3(1.2f)}) * camera.view());
     EXPECT_TRUE(f.intersectsSphere(glm::vec3(0.0f), 1.0f));
     EXPECT_FALSE(f.intersectsSphere(glm::vec3(100.0f, 0.0f, 0.0f), 1.0f));   // far to the side
     EXPECT_FALSE(f.intersectsSphere(camera.position() + glm::vec3(0, 0, 5), 1.0f));  // behind

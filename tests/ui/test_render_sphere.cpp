@@ -66,7 +66,7 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     ASSERT_EQ(rh, h);
 
     // The renderer's projection for this scene: target at the sphere's centre, radius 1.
-    const glm::mat4 inverse = glm::inverse(camera.projection(1.0f, sceneBounds(scene).radius()) * camera.view());
+    const glm::mat4 inverse = glm::inverse(camera.projection(1.0f, sceneBounds(scene)) * camera.view());
     const glm::vec3 eye = camera.position();
     const MipChain& chain = *env->chain;
     const int faceSize = chain.baseSize();

@@ -80,7 +80,7 @@ QRect objectRegion(MainWindow& w, int index, const QSize& image) {
     const SceneObject& o = w.document()->object(index);
     const OrbitCamera& camera = w.viewport()->camera();
     const float aspect = static_cast<float>(image.width()) / static_cast<float>(image.height());
-    const glm::mat4 vp = camera.projection(aspect, sceneBounds(w.document()->scene()).radius()) * camera.view();
+    const glm::mat4 vp = camera.projection(aspect, sceneBounds(w.document()->scene())) * camera.view();
     const glm::vec4 clip = vp * glm::vec4(o.worldCentre(), 1.0f);
     const float x = (0.5f * clip.x / clip.w + 0.5f) * static_cast<float>(image.width());
     const float y = (0.5f - 0.5f * clip.y / clip.w) * static_cast<float>(image.height());

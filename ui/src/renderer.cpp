@@ -328,11 +328,8 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     d.ensureTargets(width, height, scene.display.samples);
 
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
-    const Bounds bounds = sceneBounds(scene);
-    const float sceneRadius = std::max(bounds.radius(), glm::length(camera.target - bounds.centre()) +
-                                                            bounds.radius());
     const glm::mat4 view = camera.view();
-    const glm::mat4 projection = camera.projection(aspect, sceneRadius);
+    const glm::mat4 projection = camera.projection(aspect, sceneBounds(scene));
     const glm::mat4 viewProjection = projection * view;
     const glm::mat3 envRotation = environmentRotation(scene.environment.rotationDegrees);
     const Frustum frustum = Frustum::fromViewProjection(viewProjection);

@@ -109,10 +109,7 @@ int Viewport::pickObject(QPoint position) const {
     // culling uses too, so what is picked is what could be drawn.
     const float aspect = height() > 0 ? static_cast<float>(width()) / static_cast<float>(height()) : 1.0f;
     const Scene& scene = document_->scene();
-    const Bounds bounds = sceneBounds(scene);
-    const float sceneRadius =
-        std::max(bounds.radius(), glm::length(camera_.target - bounds.centre()) + bounds.radius());
-    const glm::mat4 inverse = glm::inverse(camera_.projection(aspect, sceneRadius) * camera_.view());
+    const glm::mat4 inverse = glm::inverse(camera_.projection(aspect, sceneBounds(scene)) * camera_.view());
     const float x = 2.0f * (static_cast<float>(position.x()) + 0.5f) / static_cast<float>(width()) - 1.0f;
     const float y = 1.0f - 2.0f * (static_cast<float>(position.y()) + 0.5f) / static_cast<float>(height());
     glm::vec4 nearPoint = inverse * glm::vec4(x, y, -1.0f, 1.0f);

@@ -23,9 +23,9 @@ struct OrbitCamera {
 
     glm::vec3 position() const;
     glm::mat4 view() const;
-    // Near and far planes follow the distance and `sceneRadius` so a 0.2-unit scan and a
-    // 120-unit one get the same depth precision.
-    glm::mat4 projection(float aspect, float sceneRadius) const;
+    // Near and far planes hold `scene` (the bounds of what is drawn) wherever the target is, and
+    // follow its size, so a 0.2-unit scan and a 120-unit one get the same depth precision.
+    glm::mat4 projection(float aspect, const Bounds& scene) const;
 
     // Mouse gestures. orbit: degrees; pan: fractions of the view height; zoom: factor > 0
     // (< 1 moves closer). Pitch is kept inside (-89°, 89°) so the up vector never flips.
