@@ -48,19 +48,11 @@ SeamStats seamStats(const CubeMap& level) {
             static_cast<double>(glm::dot(texelDirection(fa, xa, ya, m), texelDirection(fb, xb, yb, m))), -1.0, 1.0));
         return std::fabs(luminance(level.at(fa, xa, ya)) - luminance(level.at(fb, xb, yb))) / angle;
     };
-    for (Face f : kAllFaces)
-        for (int i = 0; i < m; ++i) {
-            // (edge texel, texel across, inward neighbour) for the four edges.
-            const int ex[4] = {0, m - 1, i, i}, ey[4] = {i, i, 0, m - 1};
-            const int ox[4] = {-1, m, i, i}, oy[4] = {i, i, -1, m};
-            const int ix[4] = {1, m - 2, i, i}, iy[4] = {i, i, 1, m - 2};
-            for (int k = 0; k < 4; ++k) {
-                const TexelRef across = resolveTexel(f, ox[k], oy[k], m);
-                edge += gradient(f, ex[k], ey[k], across.face, across.x, across.y);
-                inside += gradient(f, ex[k], ey[k], f, ix[k], iy[k]);
-                ++count;
-            }
-        }
+    forEachEdgePair(m, [&](Face f, int ex, int ey, const TexelRef& across, int ix, int iy) {
+        edge += gradient(f, ex, ey, across.face, across.x, across.y);
+        inside += gradient(f, ex, ey, f, ix, iy);
+        ++count;
+    });
     s.edgeGradient = edge / static_cast<double>(count);
     s.insideGradient = inside / static_cast<double>(count);
     s.ratio = s.insideGradient > 0.0 ? s.edgeGradient / s.insideGradient : 0.0;

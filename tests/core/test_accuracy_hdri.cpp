@@ -81,19 +81,11 @@ namespace {
 
 // Mean luminance jump across cube edges and just inside them (edge texel vs its inward neighbour).
 void accumulateJumps(const CubeMap& level, double& across, double& inside) {
-    const int m = level.size();
-    for (Face f : kAllFaces)
-        for (int i = 0; i < m; ++i) {
-            const int ex[4] = {0, m - 1, i, i}, ey[4] = {i, i, 0, m - 1};
-            const int ox[4] = {-1, m, i, i}, oy[4] = {i, i, -1, m};
-            const int ix[4] = {1, m - 2, i, i}, iy[4] = {i, i, 1, m - 2};
-            for (int k = 0; k < 4; ++k) {
-                const TexelRef o = resolveTexel(f, ox[k], oy[k], m);
-                const double a = luminance(level.at(f, ex[k], ey[k]));
-                across += std::fabs(a - luminance(level.at(o.face, o.x, o.y)));
-                inside += std::fabs(a - luminance(level.at(f, ix[k], iy[k])));
-            }
-        }
+    forEachEdgePair(level.size(), [&](Face f, int ex, int ey, const TexelRef& o, int ix, int iy) {
+        const double a = luminance(level.at(f, ex, ey));
+        across += std::fabs(a - luminance(level.at(o.face, o.x, o.y)));
+        inside += std::fabs(a - luminance(level.at(f, ix, iy)));
+    });
 }
 
 }  // namespace

@@ -16,6 +16,20 @@ struct LevelError {
 // Compares `test` with the truth `reference` (same size).
 LevelError compareCubes(const CubeMap& test, const CubeMap& reference);
 
+// Every texel on a face edge of a size-m cube (m >= 2), four edges per face: calls
+// fn(face, edge texel x, y, the texel across the edge, the inward neighbour's x, y). The one
+// walk over edge pairs that seam measures share.
+template <class Fn>
+void forEachEdgePair(int m, Fn&& fn) {
+    for (Face f : kAllFaces)
+        for (int i = 0; i < m; ++i) {
+            const int ex[4] = {0, m - 1, i, i}, ey[4] = {i, i, 0, m - 1};
+            const int ox[4] = {-1, m, i, i}, oy[4] = {i, i, -1, m};
+            const int ix[4] = {1, m - 2, i, i}, iy[4] = {i, i, 1, m - 2};
+            for (int k = 0; k < 4; ++k) fn(f, ex[k], ey[k], resolveTexel(f, ox[k], oy[k], m), ix[k], iy[k]);
+        }
+}
+
 // Jumps across cube edges against jumps just inside the faces, as luminance gradients (difference
 // over the angle between the two texel centres): for every texel on a face edge, the pair formed
 // with the texel across the edge, and the pair formed with its inward neighbour.
