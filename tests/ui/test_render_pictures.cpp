@@ -7,6 +7,7 @@
 #include "mipgloss/builders.h"
 #include "mipgloss/environment.h"
 #include "mipgloss/envio.h"
+#include "mipgloss/metrics.h"
 #include "mipgloss/phong.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@
 namespace mipgloss {
 namespace {
 
-float luminance(const glm::vec4& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(const glm::vec4& c) { return static_cast<float>(mipgloss::luminance(glm::vec3(c))); }
 
 // Mean |∇L| / mean L over a pixel box: the relative amount of detail in a region.
 double relativeDetail(const std::vector<glm::vec4>& hdr, int w, int x0, int y0, int x1, int y1) {
