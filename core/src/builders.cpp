@@ -137,19 +137,6 @@ MipChain buildChain(const CubeMap& base, std::string_view method, const BuildOpt
     throw std::invalid_argument("unknown mip builder '" + std::string(method) + "'");
 }
 
-MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {
-    const Progress progress(options);
-    const int n = base.size();
-    const int levels = fullChainLevelCount(n);
-    MipChain chain;
-    chain.levels.push_back(seamlessCopy(base));
-    for (int k = 1; k < levels; ++k) {
-        progress.report(static_cast<float>(k) / static_cast<float>(levels));
-        chain.levels.push_back(boxDownsample(chain.levels.back(), levelSize(n, k)));
-    }
-    progress.report(1.0f);
-    return chain;
-}
 
 namespace {
 
@@ -223,7 +210,7 @@ MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options) {
 
 namespace {
 
-// The chain shape shared by the convolution builders: level 0 is the base, each level the scene
+// The chain shape shared by the builders: level 0 is the base, each level the scene
 // can reach is `filterLevel(k)`, and levels beyond BuildOptions::lastFilteredLevel get a cheap box
 // step from the level before.
 template <class FilterLevel>
@@ -243,6 +230,13 @@ MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, F
 }
 
 }  // namespace
+
+// Every level a box step from the one before: the shared chain with nothing filtered.
+MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {
+    BuildOptions boxOnly = options;
+    boxOnly.lastFilteredLevel = 0;
+    return buildConvolvedChain(base, boxOnly, [](int) -> CubeMap { return {}; });
+}
 
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
     const int n = base.size();
