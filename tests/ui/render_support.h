@@ -52,6 +52,22 @@ inline ui::OffscreenRenderer* sharedRenderer(std::string* error = nullptr) {
     return renderer.get();
 }
 
+// One unit sphere at the origin with `material`, no background, no multisampling (each pixel is
+// one fragment at its centre): what the per-pixel checks compare. The mesh (256×128 quads) is
+// made once and shared, so the renderer uploads it once per binary.
+inline Scene sphereScene(const Material& material) {
+    static const auto sphere = std::make_shared<const Mesh>(makeSphere(128, 256));
+    Scene scene;
+    SceneObject object;
+    object.name = "sphere";
+    object.mesh = sphere;
+    object.material = material;
+    scene.objects.push_back(object);
+    scene.display.showBackground = false;
+    scene.display.samples = 0;
+    return scene;
+}
+
 // Linear HDR pixels (bottom row first) -> an 8-bit picture for humans: clipped, sRGB-encoded.
 inline QImage hdrToImage(const std::vector<glm::vec4>& hdr, int width, int height, float scale = 1.0f) {
     QImage image(width, height, QImage::Format_RGB32);

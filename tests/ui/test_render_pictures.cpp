@@ -114,15 +114,11 @@ TEST(DiffusePicture, IrradianceMapMatchesTheExactConvolutionChainLookupIsMeasure
         // far less than the errors measured here (the irradiance case bounds it: 0.05 %).
         static const CubeMap source = resampleCube(*env->base, 32);
         const CubeMap exact = referenceConvolution(source, c.exponent, 32);
-        Scene scene;
-        SceneObject sphere;
-        sphere.mesh = std::make_shared<const Mesh>(makeSphere(128, 256));
-        sphere.material.lambda = c.lambda;
-        sphere.material.mode = LookupMode::Normal;
-        sphere.material.useIrradiance = c.irradiance;
-        scene.objects.push_back(sphere);
-        scene.display.showBackground = false;
-        scene.display.samples = 0;
+        Material material;
+        material.lambda = c.lambda;
+        material.mode = LookupMode::Normal;
+        material.useIrradiance = c.irradiance;
+        const Scene scene = test::sphereScene(material);
         OrbitCamera camera;
         camera.yawDegrees = 35.0f;
         camera.pitchDegrees = 30.0f;
@@ -187,14 +183,10 @@ TEST(GrazingOption, SharpensTheRimAndLeavesTheCentre) {
     std::vector<std::vector<glm::vec4>> pictures;
     OrbitCamera camera;
     for (const bool grazing : {false, true}) {
-        Scene scene;
-        SceneObject sphere;
-        sphere.mesh = std::make_shared<const Mesh>(makeSphere(128, 256));
-        sphere.material.lambda = 5.0f;
-        sphere.material.sharperAtGrazing = grazing;
-        scene.objects.push_back(sphere);
-        scene.display.showBackground = false;
-        scene.display.samples = 0;
+        Material material;
+        material.lambda = 5.0f;
+        material.sharperAtGrazing = grazing;
+        const Scene scene = test::sphereScene(material);
         camera.frame(sceneBounds(scene), 1.0f);
         const QImage picture = renderer->render(scene, camera, env, w, h);
         picture.save(QString::fromStdString((test::outputDir() / (grazing ? "grazing_on.png" : "grazing_off.png")).string()));
@@ -243,14 +235,10 @@ struct SeamMeasure {
 
 SeamMeasure seamsOfDiffuseSphere(const std::string& builder, float lambda, QImage* picture) {
     ui::OffscreenRenderer* renderer = test::sharedRenderer();
-    Scene scene;
-    SceneObject sphere;
-    sphere.mesh = std::make_shared<const Mesh>(makeSphere(128, 256));
-    sphere.material.lambda = lambda;
-    sphere.material.mode = LookupMode::Normal;
-    scene.objects.push_back(sphere);
-    scene.display.showBackground = false;
-    scene.display.samples = 0;
+    Material material;
+    material.lambda = lambda;
+    material.mode = LookupMode::Normal;
+    Scene scene = test::sphereScene(material);
     scene.display.toneMap = ToneMap::Reinhard;
     scene.environment.builder = builder;
     const auto env = std::make_shared<const PreparedEnvironment>(

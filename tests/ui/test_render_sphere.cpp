@@ -41,16 +41,11 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     ASSERT_NE(renderer, nullptr) << error;
 
-    Scene scene;
-    SceneObject sphere;
-    sphere.name = "sphere";
-    sphere.mesh = std::make_shared<const Mesh>(makeSphere(128, 256));
-    sphere.material.lambda = param.lambda;
-    sphere.material.mode = param.mode;
-    sphere.material.useIrradiance = param.irradiance;
-    scene.objects.push_back(sphere);
-    scene.display.showBackground = false;
-    scene.display.samples = 0;  // no multisampling: each pixel is one fragment at its centre
+    Material material;
+    material.lambda = param.lambda;
+    material.mode = param.mode;
+    material.useIrradiance = param.irradiance;
+    Scene scene = test::sphereScene(material);
     scene.display.toneMap = ToneMap::Linear;
 
     const int w = param.size, h = param.size;
