@@ -1,11 +1,11 @@
 // The `mipgloss` command line: bake, bench, and (with the UI) render, bench-render. Thin: everything it does lives in mipgloss::core.
-#include "mipgloss/bake.h"
-#include "mipgloss/builders.h"
-#include "mipgloss/default_env.h"
-#include "mipgloss/envio.h"
-#include "mipgloss/irradiance.h"
-#include "mipgloss/metrics.h"
-#include "mipgloss/phong.h"
+#include "mipgloss/io/bake.h"
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/io/default_env.h"
+#include "mipgloss/io/import.h"
+#include "mipgloss/ibl/irradiance.h"
+#include "mipgloss/ibl/metrics.h"
+#include "mipgloss/ibl/phong.h"
 
 #include "cli_args.h"
 
@@ -110,9 +110,8 @@ int runBake(Args args) {
             if (!parseLayout(v, req.import.layout)) throw UsageError("unknown layout '" + v + "'");
         } else if (a == "--handedness") {
             const std::string v = args.value(a);
-            if (v == "right") req.import.handedness = Handedness::Right;
-            else if (v == "left") req.import.handedness = Handedness::Left;
-            else throw UsageError("--handedness is right or left, got '" + v + "'");
+            if (!parseHandedness(v, req.import.handedness))
+                throw UsageError("--handedness is right or left, got '" + v + "'");
         } else if (a == "--irradiance") req.irradiance = true;
         else if (a == "--quiet") quiet = true;
         else if (a == "--help" || a == "-h") { std::cout << kUsage; return 0; }

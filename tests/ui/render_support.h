@@ -2,10 +2,10 @@
 // and the CPU side of the paper's lookup (the same direction, the same level, on the core's chain).
 #pragma once
 
-#include "mipgloss/camera.h"
-#include "mipgloss/cubemap.h"
-#include "mipgloss/environment.h"
-#include "mipgloss/scene.h"
+#include "mipgloss/scene/camera.h"
+#include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/offscreen.h"
 
 #include <QCoreApplication>

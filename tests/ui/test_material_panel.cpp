@@ -1,6 +1,6 @@
 // MaterialPanel without OpenGL: λ, slider and Phong exponent kept in step through real key input,
 // ranges from the environment's face size, enabling rules, and the sRGB <-> linear conversion.
-#include "mipgloss/phong.h"
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
 #include "widget_test_support.h"

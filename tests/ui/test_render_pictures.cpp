@@ -4,11 +4,12 @@
 #include "render_support.h"
 #include "test_support.h"
 
-#include "mipgloss/builders.h"
-#include "mipgloss/environment.h"
-#include "mipgloss/envio.h"
-#include "mipgloss/metrics.h"
-#include "mipgloss/phong.h"
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/io/import.h"
+#include "mipgloss/ibl/metrics.h"
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/resample.h"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 #include "render_support.h"
 #include "test_support.h"
 
-#include "mipgloss/builders.h"
-#include "mipgloss/environment.h"
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/scene/environment.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The real window under X (Xvfb + Mesa llvmpipe in CI): selection through the scene list, λ edits
 // through the material panel redrawing without rebuilding or re-uploading the chain, imports and
 // their placement, and bad files that leave the scene as it was.
-#include "mipgloss/phong.h"
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/main_window.h"
 #include "mipgloss/ui/material_panel.h"

@@ -1,8 +1,8 @@
 #include "mipgloss/ui/main_window.h"
 
-#include "mipgloss/builders.h"
-#include "mipgloss/mesh.h"
-#include "mipgloss/scene.h"
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"

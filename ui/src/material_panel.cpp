@@ -1,6 +1,6 @@
 #include "mipgloss/ui/material_panel.h"
 
-#include "mipgloss/phong.h"
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/scene_document.h"
 
 #include <QCheckBox>

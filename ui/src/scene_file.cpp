@@ -1,6 +1,6 @@
 #include "mipgloss/ui/scene_file.h"
 
-#include "mipgloss/builders.h"
+#include "mipgloss/ibl/builders.h"
 
 #include <QFile>
 #include <QJsonArray>
@@ -51,8 +51,6 @@ fs::path absoluteNormal(const fs::path& p) {
     fs::path a = fs::absolute(p, ec);
     return (ec ? p : a).lexically_normal();
 }
-
-const char* handednessName(Handedness h) { return h == Handedness::Left ? "left" : "right"; }
 
 QJsonArray toArray(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
 
@@ -165,11 +163,7 @@ public:
         if (!parseLayout(layout, s.layout)) fail("unknown \"environment.layout\" \"" + layout + "\"");
         const std::string right = "right";
         const std::string hand = string(o, "handedness", where, &right);
-        if (hand == "right")
-            s.handedness = Handedness::Right;
-        else if (hand == "left")
-            s.handedness = Handedness::Left;
-        else
+        if (!parseHandedness(hand, s.handedness))
             fail("\"environment.handedness\" must be \"right\" or \"left\", not \"" + hand + "\"");
         s.faceSize = clamped(integer(o, "faceSize", where, s.faceSize), kMinFaceSize, kMaxFaceSize,
                              "environment.faceSize");

@@ -4,7 +4,7 @@
 // of λ inside the filtered levels, of mode or of tint builds nothing.
 #pragma once
 
-#include "mipgloss/environment.h"
+#include "mipgloss/scene/environment.h"
 
 #include <QObject>
 #include <QString>

@@ -16,7 +16,7 @@
 // hintLabel.
 #pragma once
 
-#include "mipgloss/scene.h"
+#include "mipgloss/scene/scene.h"
 
 #include <QColor>
 #include <QWidget>

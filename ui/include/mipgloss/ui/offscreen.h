@@ -2,7 +2,7 @@
 // framebuffer object. Needs a QGuiApplication and (with Qt 6.4 on Linux) an X display.
 #pragma once
 
-#include "mipgloss/camera.h"
+#include "mipgloss/scene/camera.h"
 #include "mipgloss/ui/renderer.h"
 
 #include <QImage>

@@ -12,9 +12,9 @@
 // Requires an OpenGL 4.1 core context (current during every call).
 #pragma once
 
-#include "mipgloss/camera.h"
-#include "mipgloss/environment.h"
-#include "mipgloss/scene.h"
+#include "mipgloss/scene/camera.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/scene.h"
 
 #include <glm/vec4.hpp>
 

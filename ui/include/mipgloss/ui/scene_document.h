@@ -3,7 +3,7 @@
 // itself stays a plain value (mipgloss::Scene); meshes are shared, never copied, by duplicates.
 #pragma once
 
-#include "mipgloss/scene.h"
+#include "mipgloss/scene/scene.h"
 
 #include <QObject>
 #include <QString>

@@ -27,8 +27,8 @@
 // are clamped with a warning in the report. Optional keys default to the values in scene.h.
 #pragma once
 
-#include "mipgloss/file_error.h"
-#include "mipgloss/scene.h"
+#include "mipgloss/io/file_error.h"
+#include "mipgloss/scene/scene.h"
 
 #include <QByteArray>
 

@@ -6,7 +6,7 @@
 // selects the object under the cursor; F frames all; Home resets the view.
 #pragma once
 
-#include "mipgloss/camera.h"
+#include "mipgloss/scene/camera.h"
 #include "mipgloss/ui/renderer.h"
 
 #include <QImage>

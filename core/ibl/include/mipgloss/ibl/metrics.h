@@ -1,0 +1,51 @@
+// Error and seam metrics, all on texel centres with exact solid-angle weights.
+#pragma once
+
+#include "mipgloss/ibl/cubemap.h"
+
+namespace mipgloss {
+
+struct LevelError {
+    double relRms = 0.0;          // sqrt(Σ Ω |a-b|²) / sqrt(Σ Ω |b|²) over RGB
+    double relRmsBorder = 0.0;    // the same over texels on face borders
+    double relRmsInterior = 0.0;  // the same over the other texels (0 when a face has none)
+    double meanRelDiff = 0.0;     // (mean(a) - mean(b)) / mean(b), solid-angle weighted, luminance
+    bool hasInterior = false;
+};
+
+// Compares `test` with the truth `reference` (same size).
+LevelError compareCubes(const CubeMap& test, const CubeMap& reference);
+
+// Every texel on a face edge of a size-m cube (m >= 2), four edges per face: calls
+// fn(face, edge texel x, y, the texel across the edge, the inward neighbour's x, y). The one
+// walk over edge pairs that seam measures share.
+template <class Fn>
+void forEachEdgePair(int m, Fn&& fn) {
+    for (Face f : kAllFaces)
+        for (int i = 0; i < m; ++i) {
+            const int ex[4] = {0, m - 1, i, i}, ey[4] = {i, i, 0, m - 1};
+            const int ox[4] = {-1, m, i, i}, oy[4] = {i, i, -1, m};
+            const int ix[4] = {1, m - 2, i, i}, iy[4] = {i, i, 1, m - 2};
+            for (int k = 0; k < 4; ++k) fn(f, ex[k], ey[k], resolveTexel(f, ox[k], oy[k], m), ix[k], iy[k]);
+        }
+}
+
+// Jumps across cube edges against jumps just inside the faces, as luminance gradients (difference
+// over the angle between the two texel centres): for every texel on a face edge, the pair formed
+// with the texel across the edge, and the pair formed with its inward neighbour.
+struct SeamStats {
+    double edgeGradient = 0.0;
+    double insideGradient = 0.0;
+    double ratio = 0.0;  // edge / inside; 0 when the face is smaller than 2×2
+};
+SeamStats seamStats(const CubeMap& level);
+
+// Exponent n whose exact Phong convolution of `base`, sampled at the texel centres of a face of
+// `level.size()`, best matches `level` in relative RMS (golden-section search on log n within
+// [guess/16, guess·16]).
+double fitExponent(const CubeMap& level, const CubeMap& base, double guess);
+
+// Luminance (Rec. 709).
+inline double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+}  // namespace mipgloss

@@ -1,0 +1,267 @@
+#include "mipgloss/ibl/builders.h"
+
+#include "lobe_filter.h"
+#include "mipgloss/ibl/parallel.h"
+#include "mipgloss/ibl/phong.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mipgloss {
+
+namespace {
+
+// Levels 1..kFinerLevels filter the base; level k > kFinerLevels filters the energy pyramid at
+// level k - kFinerLevels, whose texels are 8× smaller than level k's (0.34 σ of its lobe), so
+// treating each as a point at its energy centroid costs well under 1 % (README, bench).
+constexpr int kFinerLevels = 3;
+// The default builder's lobe cut: the tail beyond it holds 1e-6 of the lobe's energy.
+constexpr double kPhongCutoff = 1e-6;
+
+// Weights of an area-proportional box from `from` texels to `to` texels along one axis:
+// destination texel d covers [d·from/to, (d+1)·from/to) of the source.
+struct AxisWeights {
+    std::vector<int> first;                 // first source texel per destination texel
+    std::vector<std::vector<float>> weight;  // normalized weights from `first` on
+};
+AxisWeights boxWeights(int from, int to) {
+    AxisWeights w;
+    w.first.resize(static_cast<std::size_t>(to));
+    w.weight.resize(static_cast<std::size_t>(to));
+    const double ratio = static_cast<double>(from) / to;
+    for (int d = 0; d < to; ++d) {
+        const double a = d * ratio, b = (d + 1) * ratio;
+        const int i0 = static_cast<int>(std::floor(a));
+        const int i1 = std::min(from - 1, static_cast<int>(std::ceil(b)) - 1);
+        w.first[static_cast<std::size_t>(d)] = i0;
+        for (int i = i0; i <= i1; ++i) {
+            const double overlap = std::min<double>(b, i + 1) - std::max<double>(a, i);
+            w.weight[static_cast<std::size_t>(d)].push_back(static_cast<float>(overlap / ratio));
+        }
+    }
+    return w;
+}
+
+// Area-proportional box resampling of a row-major RGB image (2×2 averaging when halving).
+std::vector<Rgb> boxResample(const std::vector<Rgb>& src, int srcSize, int dstSize) {
+    const AxisWeights w = boxWeights(srcSize, dstSize);
+    std::vector<Rgb> dst(static_cast<std::size_t>(dstSize) * static_cast<std::size_t>(dstSize));
+    parallelFor(0, dstSize, [&](int y) {
+        const auto& wy = w.weight[static_cast<std::size_t>(y)];
+        const int y0 = w.first[static_cast<std::size_t>(y)];
+        for (int x = 0; x < dstSize; ++x) {
+            const auto& wx = w.weight[static_cast<std::size_t>(x)];
+            const int x0 = w.first[static_cast<std::size_t>(x)];
+            glm::dvec3 sum(0.0);
+            for (std::size_t j = 0; j < wy.size(); ++j)
+                for (std::size_t i = 0; i < wx.size(); ++i)
+                    sum += static_cast<double>(wy[j] * wx[i]) *
+                           glm::dvec3(src[static_cast<std::size_t>(y0 + static_cast<int>(j)) * srcSize +
+                                          static_cast<std::size_t>(x0 + static_cast<int>(i))]);
+            dst[static_cast<std::size_t>(y) * dstSize + static_cast<std::size_t>(x)] = Rgb(sum);
+        }
+    });
+    return dst;
+}
+
+std::vector<Rgb> faceImage(const CubeMap& c, Face f) {
+    const int m = c.size();
+    std::vector<Rgb> img(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+    for (int y = 0; y < m; ++y)
+        for (int x = 0; x < m; ++x) img[static_cast<std::size_t>(y) * m + static_cast<std::size_t>(x)] = c.at(f, x, y);
+    return img;
+}
+
+CubeMap boxDownsample(const CubeMap& src, int dstSize) {
+    CubeMap dst(dstSize);
+    for (Face f : kAllFaces) {
+        const std::vector<Rgb> img = boxResample(faceImage(src, f), src.size(), dstSize);
+        for (int y = 0; y < dstSize; ++y)
+            for (int x = 0; x < dstSize; ++x)
+                dst.at(f, x, y) = img[static_cast<std::size_t>(y) * dstSize + static_cast<std::size_t>(x)];
+    }
+    dst.makeSeamless();
+    return dst;
+}
+
+class Progress {
+public:
+    explicit Progress(const BuildOptions& o) : fn_(o.progress) {}
+    void report(float fraction) const {
+        if (fn_ && !fn_(fraction)) throw BuildCancelled{};
+    }
+
+private:
+    const std::function<bool(float)>& fn_;
+};
+
+bool filtered(const BuildOptions& o, int level) {
+    return o.lastFilteredLevel < 0 || level <= o.lastFilteredLevel;
+}
+
+CubeMap seamlessCopy(const CubeMap& c) {
+    CubeMap copy = c;
+    copy.makeSeamless();
+    return copy;
+}
+
+int powerOfTwoFactor(int n) {
+    int k = 0;
+    while (n > 0 && n % 2 == 0) {
+        n /= 2;
+        ++k;
+    }
+    return k;
+}
+
+}  // namespace
+
+std::vector<std::string> builderNames() {
+    return {std::string(kDefaultBuilder), "box", "paper", "reference"};
+}
+
+bool isBuilderName(std::string_view name) {
+    const auto names = builderNames();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+MipChain buildChain(const CubeMap& base, std::string_view method, const BuildOptions& options) {
+    if (method == "box") return buildBoxChain(base, options);
+    if (method == "paper") return buildPaperChain(base, options);
+    if (method == kDefaultBuilder) return buildPhongChain(base, options);
+    if (method == "reference") return buildReferenceChain(base, options);
+    throw std::invalid_argument("unknown mip builder '" + std::string(method) + "'");
+}
+
+
+namespace {
+
+// The paper's enlarged image for face f (Figure 2): the face in the centre of a 3M×3M image, its
+// four neighbours unfolded around it, the four corner blocks filled with a copy of the opposite
+// face (the paper copies "one of the available cube face textures"; which one it does not say).
+std::vector<Rgb> enlargedImage(const CubeMap& c, Face f) {
+    const int m = c.size();
+    const int big = 3 * m;
+    const detail::FaceFrame& fr = detail::faceFrame(f);
+    const Face opposite = static_cast<Face>(static_cast<int>(f) ^ 1);
+    std::vector<Rgb> img(static_cast<std::size_t>(big) * static_cast<std::size_t>(big));
+    for (int by = 0; by < big; ++by) {
+        for (int bx = 0; bx < big; ++bx) {
+            const int x = bx - m, y = by - m;
+            const bool inX = x >= 0 && x < m, inY = y >= 0 && y < m;
+            Rgb v;
+            if (inX && inY) {
+                v = c.at(f, x, y);
+            } else if (!inX && !inY) {
+                v = c.at(opposite, (x + m) % m, (y + m) % m);
+            } else {
+                // Unfold the neighbour about the shared edge: a point δ beyond the edge in the
+                // plane is δ along the neighbour face, away from the edge (exact, no perspective).
+                const float sc = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(m) - 1.0f;
+                const float tc = 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(m) - 1.0f;
+                glm::vec3 q;
+                if (!inX) {
+                    const float side = sc < 0.0f ? -1.0f : 1.0f;
+                    const float delta = std::fabs(sc) - 1.0f;
+                    q = (1.0f - delta) * fr.axis + side * fr.u + tc * fr.v;
+                } else {
+                    const float side = tc < 0.0f ? -1.0f : 1.0f;
+                    const float delta = std::fabs(tc) - 1.0f;
+                    q = (1.0f - delta) * fr.axis + sc * fr.u + side * fr.v;
+                }
+                const FaceCoord fc = directionToFace(q);
+                v = c.at(fc.face, std::clamp(static_cast<int>(fc.s * static_cast<float>(m)), 0, m - 1),
+                         std::clamp(static_cast<int>(fc.t * static_cast<float>(m)), 0, m - 1));
+            }
+            img[static_cast<std::size_t>(by) * big + static_cast<std::size_t>(bx)] = v;
+        }
+    }
+    return img;
+}
+
+}  // namespace
+
+MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options) {
+    const Progress progress(options);
+    const int n = base.size();
+    const int levels = fullChainLevelCount(n);
+    MipChain chain;
+    for (int k = 0; k < levels; ++k) chain.levels.emplace_back(levelSize(n, k));
+    for (Face f : kAllFaces) {
+        progress.report(static_cast<float>(f) / 6.0f);
+        std::vector<Rgb> big = enlargedImage(base, f);
+        for (int k = 0; k < levels; ++k) {
+            const int m = levelSize(n, k);
+            if (k > 0) big = boxResample(big, 3 * levelSize(n, k - 1), 3 * m);
+            // Cut out the centre with its one-texel border: the paper's texture border.
+            for (int y = -1; y <= m; ++y)
+                for (int x = -1; x <= m; ++x)
+                    chain.levels[static_cast<std::size_t>(k)].at(f, x, y) =
+                        big[static_cast<std::size_t>(y + m) * (3 * m) + static_cast<std::size_t>(x + m)];
+        }
+    }
+    progress.report(1.0f);
+    return chain;
+}
+
+namespace {
+
+// The chain shape shared by the builders: level 0 is the base, each level the scene
+// can reach is `filterLevel(k)`, and levels beyond BuildOptions::lastFilteredLevel get a cheap box
+// step from the level before.
+template <class FilterLevel>
+MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, FilterLevel&& filterLevel) {
+    const Progress progress(options);
+    const int n = base.size();
+    const int levels = fullChainLevelCount(n);
+    MipChain chain;
+    chain.levels.push_back(seamlessCopy(base));
+    for (int k = 1; k < levels; ++k) {
+        progress.report(static_cast<float>(k - 1) / static_cast<float>(levels - 1));
+        chain.levels.push_back(filtered(options, k) ? filterLevel(k)
+                                                    : boxDownsample(chain.levels.back(), levelSize(n, k)));
+    }
+    progress.report(1.0f);
+    return chain;
+}
+
+}  // namespace
+
+// Every level a box step from the one before: the shared chain with nothing filtered.
+MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {
+    BuildOptions boxOnly = options;
+    boxOnly.lastFilteredLevel = 0;
+    return buildConvolvedChain(base, boxOnly, [](int) -> CubeMap { return {}; });
+}
+
+MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
+    const int n = base.size();
+    // The pyramid needs exact 2×2 nesting; a non-power-of-two base coarsens only as far as its
+    // size stays even, and deeper levels then filter that (finer, slower, exact) source.
+    const int deepestSource = powerOfTwoFactor(n);
+    std::vector<detail::LobeSource> sources;
+    sources.push_back(detail::baseSource(base));
+    return buildConvolvedChain(base, options, [&](int k) {
+        const int s = std::min({std::max(0, k - kFinerLevels), deepestSource, k});
+        while (static_cast<int>(sources.size()) <= s) sources.push_back(detail::coarsenSource(sources.back()));
+        return detail::convolve(sources[static_cast<std::size_t>(s)], lambdaToExponent(k, n), levelSize(n, k),
+                                kPhongCutoff);
+    });
+}
+
+MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options) {
+    const int n = base.size();
+    return buildConvolvedChain(base, options, [&](int k) {
+        return referenceConvolution(base, lambdaToExponent(k, n), levelSize(n, k));
+    });
+}
+
+CubeMap referenceConvolution(const CubeMap& base, double exponent, int outSize, double cutoff) {
+    return detail::convolveExact(base, exponent, outSize, cutoff);
+}
+
+}  // namespace mipgloss

@@ -1,0 +1,74 @@
+// Private: the normalized-Phong-lobe convolution machinery shared by the `phong` and `reference`
+// builders and by irradiance (n = 1).
+//
+// The sphere is represented by source texels, each a point carrying energy. Geometry is stored in
+// a face-local frame (a, b, c) = (sc, tc, 1)/|(sc, tc, 1)|, identical for the six faces, so one
+// array serves all faces; a direction R is rotated into each face's frame once per output texel.
+//
+// Culling: source texels are grouped in square nodes; each node has a bounding cone on the
+// sphere. For an output direction R and lobe support half-angle α, a breadth-first walk over
+// nodes (crossing face edges through resolveTexel, the cube's one edge mechanism) visits exactly
+// the connected set of nodes whose cones meet the support cap.
+#pragma once
+
+#include "mipgloss/ibl/cubemap.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace mipgloss::detail {
+
+// Face frame: direction = normalize(axis + sc·u + tc·v); local coords are (R·u, R·v, R·axis).
+struct FaceFrame {
+    glm::vec3 u, v, axis;
+};
+const FaceFrame& faceFrame(Face f);
+
+// Node grid of a source level: nodes of group×group texels on a face of `size` texels.
+struct NodeGrid {
+    int size = 0;      // source texels per face side
+    int group = 1;     // texels per node side (divides size)
+    int nodes = 0;     // nodes per face side
+    std::vector<glm::vec3> axis;   // 6·nodes², world-space unit cone axis
+    std::vector<float> cosRadius;  // nodes², cone half-angle (same on every face)
+    std::vector<float> sinRadius;
+};
+NodeGrid makeNodeGrid(int size);
+
+// A source level: per texel, energy E = Σ Ω·L (RGB) placed at its energy-weighted direction, and
+// solid angle Ω placed at its geometric centroid. At the base (`energyDir` empty) both directions
+// are the texel centre.
+struct LobeSource {
+    int size = 0;
+    NodeGrid grid;
+    std::vector<glm::vec3> geoDir;  // size², face-local unit geometric centroid
+    std::vector<float> omega;       // size², solid angle
+    std::array<std::vector<Rgb>, 6> energy;          // size² per face
+    std::array<std::vector<glm::vec3>, 6> energyDir;  // size² per face, face-local unit; empty at base
+    // Unnormalized first moments, kept only to build the next coarser level exactly.
+    std::vector<glm::vec3> geoMoment;
+    std::array<std::vector<glm::vec3>, 6> energyMoment;
+};
+
+// Level 0 source: texel centres and exact solid angles.
+LobeSource baseSource(const CubeMap& base);
+// Next coarser source (size/2, size must be even): energies and solid angles summed over 2×2,
+// directions the normalized first moments (luminance-weighted for energy), so a small bright
+// source keeps its true direction however coarse the level.
+LobeSource coarsenSource(const LobeSource& fine);
+
+// Lobe support: the cosine below which (R·ω)^n < cutoff.
+double supportCosine(double exponent, double cutoff);
+
+// Normalized Phong convolution of `src` at exponent n, evaluated at the texel centres of a
+// face of size outSize: Σ w(R·e)·E / Σ w(R·g)·Ω with w = (R·ω)^n cut at `cutoff` (float weights
+// from a table, double sums). Borders of the result are filled.
+CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff);
+
+// The same sum at the base, in double precision with exact weights exp(n·log(R·ω)).
+CubeMap convolveExact(const CubeMap& base, double exponent, int outSize, double cutoff);
+
+}  // namespace mipgloss::detail

@@ -1,0 +1,56 @@
+// Image decoding (OpenImageIO) into linear float RGB, and the one sanitising rule. Internal to the
+// io library: the layouts, the lat-long conversion and the cube EXR reader build on it.
+//
+// Colour: integer images (PNG, JPEG, 8/16-bit TIFF, ...) are sRGB-encoded and decoded with the
+// exact sRGB EOTF (colour.h); half and float images (EXR, HDR, float TIFF) are linear and kept as
+// they are. The first three channels are read; one channel (grey, grey + alpha) is replicated to
+// RGB; alpha is ignored (read unassociated, so colour is never multiplied by it).
+#pragma once
+
+#include "mipgloss/io/import.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mipgloss::io_detail {
+
+// A decoded image: linear float RGB, row 0 at the top.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<Rgb> px;
+    const Rgb& at(int x, int y) const {
+        return px[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)];
+    }
+};
+
+struct SanitiseCounts {
+    std::size_t nan = 0, inf = 0, negative = 0;
+};
+
+// The one sanitising rule for every pixel mipgloss reads (images, face files, cube EXR files):
+// NaN -> 0, negative (including -Inf) -> 0, +Inf -> the largest finite value among `px`.
+SanitiseCounts sanitise(std::span<Rgb> px);
+
+// Adds the counts to the report with one warning naming the file (nothing when all are zero).
+void addCounts(ImportReport& report, const std::filesystem::path& file, const SanitiseCounts& n);
+
+// The OpenImageIO read configuration: alpha unassociated, so colour is never multiplied by it.
+const OIIO::ImageSpec& readConfig();
+
+// Reads the first subimage of an opened input; `name` is what error messages call it.
+Image readOpened(OIIO::ImageInput& in, const std::filesystem::path& name);
+
+// Decodes and sanitises an image file, recording it in the report. Throws EnvError.
+Image readImageFile(const std::filesystem::path& file, ImportReport& report);
+
+// The same from bytes in memory; `name` stands for the file (its extension names the format).
+Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report);
+
+}  // namespace mipgloss::io_detail

@@ -1,0 +1,137 @@
+// Environment import: a file or folder -> a sanitised, seamless cube (import.h). The pieces live
+// beside it: decode.cpp (pixels and colour), face_files.cpp (six face files), layouts.cpp (crosses
+// and strips), latlong.cpp (lat-long conversion).
+#include "mipgloss/io/import.h"
+
+#include "decode.h"
+#include "face_files.h"
+#include "latlong.h"
+#include "layouts.h"
+#include "text.h"
+
+#include "mipgloss/ibl/resample.h"
+
+#include <algorithm>
+#include <set>
+
+namespace mipgloss {
+
+namespace fs = std::filesystem;
+using namespace io_detail;
+
+namespace {
+
+ImportedEnvironment finish(CubeMap cube, ImportReport report, int faceSize, const ProgressFn& progress) {
+    if (faceSize > 0 && faceSize != cube.size()) cube = resampleCube(cube, faceSize);
+    cube.makeSeamless();
+    if (progress) progress(1.0f);
+    return {std::move(cube), std::move(report)};
+}
+
+ImportedEnvironment fromSingleImage(const Image& img, const fs::path& file, const ImportOptions& options,
+                                    ImportReport report, const ProgressFn& progress) {
+    EnvLayout layout = options.layout;
+    if (layout == EnvLayout::Auto) layout = detectLayout(img, file);
+    report.layout = layout;
+    if (layout == EnvLayout::LatLong) {
+        const int n = options.faceSize > 0 ? options.faceSize : std::max(1, img.width / 4);
+        CubeMap cube = latLongToCube(img, n, progress, 0.3f, 0.95f);
+        return finish(std::move(cube), std::move(report), 0, progress);
+    }
+    CubeMap cube = cubeFromLayout(img, layout, file);
+    if (progress) progress(0.5f);
+    return finish(std::move(cube), std::move(report), options.faceSize, progress);
+}
+
+ImportedEnvironment fromFaces(const std::array<fs::path, 6>& files, const ImportOptions& options,
+                              ImportReport report, const ProgressFn& progress) {
+    report.layout = EnvLayout::Faces;
+    CubeMap cube = cubeFromFaceFiles(files, options.handedness, report, progress);
+    return finish(std::move(cube), std::move(report), options.faceSize, progress);
+}
+
+ImportedEnvironment loadDirectory(const fs::path& dir, const ImportOptions& options,
+                                  const ProgressFn& progress) {
+    if (options.layout != EnvLayout::Auto && options.layout != EnvLayout::Faces)
+        throw EnvError(dir, std::string("is a folder; layout ") + layoutName(options.layout) +
+                                " needs a single image file");
+    const auto byStem = imagesByStem(dir);
+    // Every (family, prefix) that some file in the folder could belong to.
+    std::vector<std::pair<FaceName, FaceSet>> groups;
+    std::set<std::pair<int, std::string>> seen;
+    for (const auto& [stem, files] : byStem) {
+        for (const FaceName& name : familyReadings(stem)) {
+            if (!seen.insert({name.family, name.prefix}).second) continue;
+            groups.push_back({name, lookUpFaces(byStem, name, ".exr")});
+        }
+    }
+    if (groups.empty())
+        throw EnvError(dir, "no cube face files found; expected six image files named with one of "
+                            "the families px/nx/py/ny/pz/nz, posx/negx/posy/negy/posz/negz, "
+                            "right/left/top/bottom/front/back, rt/lf/up/dn/ft/bk (any common prefix)");
+    // Complete sets first, then the one with the most faces; ties: shorter prefix, family order.
+    std::stable_sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) {
+        if (a.second.found != b.second.found) return a.second.found > b.second.found;
+        if (a.first.prefix.size() != b.first.prefix.size())
+            return a.first.prefix.size() < b.first.prefix.size();
+        return a.first.family < b.first.family;
+    });
+    const auto& [name, set] = groups.front();
+    if (set.found < 6) throwMissingFaces(dir, set, name, options.handedness);
+    ImportReport report;
+    int complete = 0;
+    for (const auto& g : groups) complete += g.second.found == 6 ? 1 : 0;
+    if (complete > 1)
+        report.warnings.push_back(dir.string() + ": several complete sets of face files; using " +
+                                  set.files[0].filename().string() + " and its siblings");
+    return fromFaces(set.files, options, std::move(report), progress);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& options,
+                                    const ProgressFn& progress) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw EnvError(path, "file not found");
+    if (progress) progress(0.0f);
+    if (fs::is_directory(path, ec)) return loadDirectory(path, options, progress);
+
+    // A member of a face-naming family with siblings next to it is one face of six.
+    const bool mayBeFace = options.layout == EnvLayout::Auto || options.layout == EnvLayout::Faces;
+    if (mayBeFace) {
+        const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+        const auto byStem = imagesByStem(dir);
+        const std::string ext = lower(path.extension().string());
+        std::vector<std::pair<FaceName, FaceSet>> partial;
+        for (const FaceName& name : familyReadings(lower(path.stem().string()))) {
+            FaceSet set = lookUpFaces(byStem, name, ext);
+            if (set.found == 6) return fromFaces(set.files, options, {}, progress);
+            partial.push_back({name, std::move(set)});
+        }
+        std::stable_sort(partial.begin(), partial.end(),
+                         [](const auto& a, const auto& b) { return a.second.found > b.second.found; });
+        if (!partial.empty() && (partial.front().second.found > 1 || options.layout == EnvLayout::Faces))
+            throwMissingFaces(path, partial.front().second, partial.front().first, options.handedness);
+        if (options.layout == EnvLayout::Faces)
+            throw EnvError(path, "the name does not belong to a face-naming family "
+                                 "(px/nx/..., posx/negx/..., right/left/top/bottom/front/back, "
+                                 "rt/lf/up/dn/ft/bk)");
+    }
+
+    ImportReport report;
+    const Image img = readImageFile(path, report);
+    if (progress) progress(0.3f);
+    return fromSingleImage(img, path, options, std::move(report), progress);
+}
+
+ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> bytes, const std::string& name,
+                                              const ImportOptions& options, const ProgressFn& progress) {
+    if (options.layout == EnvLayout::Faces) throw EnvError(name, "six face files cannot come from memory");
+    ImportReport report;
+    const Image img = readImageMemory(bytes, name, report);
+    if (progress) progress(0.3f);
+    return fromSingleImage(img, name, options, std::move(report), progress);
+}
+}  // namespace mipgloss

@@ -1,0 +1,113 @@
+// The scene a user edits: objects (a mesh, a placement, a material) and the environment settings.
+// GL-free and Qt-free; the renderer reads it, the window edits it, scene files store it.
+//
+// A material is the paper's per-object state (Ashikhmin & Ghosh 2002, §4): a minimum mip level λ
+// (GL_TEXTURE_MIN_LOD) and the lookup direction, the reflection vector or the surface normal.
+#pragma once
+
+#include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/io/import.h"
+#include "mipgloss/scene/mesh.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mipgloss {
+
+enum class LookupMode { Reflect, Normal };
+const char* lookupModeName(LookupMode mode);  // "reflect", "normal"
+bool parseLookupMode(const std::string& text, LookupMode& out);
+
+enum class ToneMap { Linear, Reinhard, Aces };
+const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces"
+bool parseToneMap(const std::string& text, ToneMap& out);
+
+// λ beyond this is clamped everywhere (clampLambda in phong.h clamps to a chain's last level too).
+inline constexpr float kMaxLambda = 16.0f;
+
+struct Material {
+    float lambda = 0.0f;  // minimum mip level, fractional values blend two levels
+    LookupMode mode = LookupMode::Reflect;
+    // Normal mode only: look up the accurate irradiance map (E/π, irradiance.h) instead of the
+    // chain at λ. Off by default: the paper's diffuse is the chain at a high λ.
+    bool useIrradiance = false;
+    Rgb tint{1.0f};  // specular colour, multiplies the lookup
+    // λ falls toward 0 as the view grazes the surface, per fragment: the sharpening of glossy
+    // reflections at grazing angles the paper wished for (§6). Off by default.
+    bool sharperAtGrazing = false;
+
+    bool operator==(const Material&) const = default;
+};
+
+struct Transform {
+    glm::vec3 translation{0.0f};
+    glm::vec3 rotationDegrees{0.0f};  // applied Z, then Y, then X... see matrix()
+    float scale = 1.0f;               // uniform, so normals need no inverse transpose
+
+    glm::mat4 matrix() const;  // T · Ry · Rx · Rz · S
+    bool operator==(const Transform&) const = default;
+};
+
+struct SceneObject {
+    std::string name;
+    std::shared_ptr<const Mesh> mesh;
+    std::string meshSource;  // the file it came from, or "builtin:teapot" / "builtin:sphere"
+    Transform transform;
+    Material material;
+    bool visible = true;
+
+    // World-space bounding sphere of the mesh under the transform.
+    glm::vec3 worldCentre() const;
+    float worldRadius() const;
+};
+
+inline constexpr const char* kBuiltinEnvironment = "builtin:courtyard";
+
+struct EnvironmentSettings {
+    std::string source = kBuiltinEnvironment;  // a file path, or the embedded default
+    EnvLayout layout = EnvLayout::Auto;
+    Handedness handedness = Handedness::Right;
+    int faceSize = 128;                        // the base level's face size after import
+    std::string builder = "phong";             // builders.h
+    float rotationDegrees = 0.0f;              // turns the environment about +Y
+    bool operator==(const EnvironmentSettings&) const = default;
+};
+
+struct DisplaySettings {
+    bool showBackground = true;
+    float backgroundLambda = 0.0f;  // the background's own blur, a mip level
+    float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping
+    ToneMap toneMap = ToneMap::Aces;
+    int samples = 4;                // multisampling
+    bool operator==(const DisplaySettings&) const = default;
+};
+
+struct Scene {
+    std::vector<SceneObject> objects;
+    EnvironmentSettings environment;
+    DisplaySettings display;
+};
+
+// The paper's Figure 1: four teapots in a row, λ = 0 (mirror), 3.5 and 5.0 looked up by the
+// reflection vector and λ = 7.0 by the normal, under a 128² cube from the embedded environment.
+Scene makeFigure1Scene();
+
+// World bounds of the visible objects (empty scene: a unit box at the origin).
+Bounds sceneBounds(const Scene& scene);
+
+// What the environment chain must provide for this scene (renderer and builder agree on it).
+// Levels up to `lastFilteredLevel` are reached through some λ (an object's, or the background's),
+// so they get the builder's lobe filter; deeper levels are reached only by minification of small
+// or distant objects, where the pixel footprint is itself an average, and get the cheap box filter.
+// `irradiance`: some visible object in normal mode asks for the irradiance map.
+struct ChainNeeds {
+    int lastFilteredLevel = 0;
+    bool irradiance = false;
+    bool operator==(const ChainNeeds&) const = default;
+};
+ChainNeeds chainNeeds(const Scene& scene, int levelCount);
+
+}  // namespace mipgloss

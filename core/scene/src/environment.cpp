@@ -1,0 +1,106 @@
+#include "mipgloss/scene/environment.h"
+
+#include "mipgloss/io/default_env.h"
+#include "mipgloss/ibl/irradiance.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace mipgloss {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool report(const StageProgress& progress, const std::string& stage, float fraction) {
+    return !progress || progress(stage, fraction);
+}
+
+}  // namespace
+
+bool PreparedEnvironment::sameImport(const EnvironmentSettings& other) const {
+    return base && settings.source == other.source && settings.faceSize == other.faceSize &&
+           settings.layout == other.layout && settings.handedness == other.handedness;
+}
+
+bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const {
+    return sameImport(other) && chain && settings.builder == other.builder &&
+           filteredThrough >= std::min(needs.lastFilteredLevel, levelCount() - 1) &&
+           (!needs.irradiance || irradiance);
+}
+
+ChainNeeds needsFor(const Scene& scene, int baseFaceSize) {
+    return chainNeeds(scene, fullChainLevelCount(std::max(baseFaceSize, 1)));
+}
+
+PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
+                                       const PreparedEnvironment* previous,
+                                       const StageProgress& progress) {
+    PreparedEnvironment out;
+    out.settings = settings;
+
+    // 1. Import, unless the previous one read the same file the same way.
+    if (previous && previous->sameImport(settings)) {
+        out.base = previous->base;
+        out.report = previous->report;
+        out.importSeconds = previous->importSeconds;
+    } else {
+        const auto start = std::chrono::steady_clock::now();
+        if (!report(progress, "import", 0.0f)) throw BuildCancelled{};
+        ImportedEnvironment imported;
+        if (settings.source == kBuiltinEnvironment) {
+            imported = loadDefaultEnvironment(settings.faceSize);
+        } else {
+            ImportOptions options;
+            options.layout = settings.layout;
+            options.handedness = settings.handedness;
+            options.faceSize = settings.faceSize;
+            imported = loadEnvironment(settings.source, options, [&](float f) {
+                if (!report(progress, "import", f)) throw BuildCancelled{};
+            });
+        }
+        out.base = std::make_shared<const CubeMap>(std::move(imported.cube));
+        out.report = std::move(imported.report);
+        out.importSeconds = secondsSince(start);
+    }
+    out.settings.faceSize = out.base->size();
+
+    // 2. The chain: kept when the builder matches and it is filtered deep enough. Otherwise built
+    // with the filter through max(needed, what the previous chain had), so the range never shrinks
+    // (going back and forth with a slider builds at most once per new level).
+    const int levels = fullChainLevelCount(out.base->size());
+    const int needed = std::clamp(needs.lastFilteredLevel, 0, levels - 1);
+    const bool sameBuilderChain = previous && previous->chain && previous->sameImport(settings) &&
+                                  previous->settings.builder == settings.builder;
+    if (sameBuilderChain && previous->filteredThrough >= needed) {
+        out.chain = previous->chain;
+        out.filteredThrough = previous->filteredThrough;
+        out.buildSeconds = previous->buildSeconds;
+    } else {
+        const int through = sameBuilderChain ? std::max(needed, previous->filteredThrough) : needed;
+        const auto start = std::chrono::steady_clock::now();
+        BuildOptions options;
+        options.lastFilteredLevel = through;
+        options.progress = [&](float f) { return report(progress, "build", f); };
+        out.chain = std::make_shared<const MipChain>(buildChain(*out.base, settings.builder, options));
+        out.filteredThrough = through;
+        out.buildSeconds = secondsSince(start);
+    }
+
+    // 3. Irradiance only when some object reads it; kept once made for this import.
+    if (previous && previous->irradiance && previous->sameImport(settings)) {
+        out.irradiance = previous->irradiance;
+        out.irradianceSeconds = previous->irradianceSeconds;
+    } else if (needs.irradiance) {
+        if (!report(progress, "irradiance", 0.0f)) throw BuildCancelled{};
+        const auto start = std::chrono::steady_clock::now();
+        out.irradiance = std::make_shared<const CubeMap>(computeIrradiance(*out.base));
+        out.irradianceSeconds = secondsSince(start);
+    }
+    report(progress, "done", 1.0f);
+    return out;
+}
+
+}  // namespace mipgloss

@@ -1,0 +1,138 @@
+#include "mipgloss/scene/scene.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mipgloss {
+
+const char* lookupModeName(LookupMode mode) {
+    return mode == LookupMode::Normal ? "normal" : "reflect";
+}
+
+bool parseLookupMode(const std::string& text, LookupMode& out) {
+    if (text == "reflect" || text == "reflection") {
+        out = LookupMode::Reflect;
+        return true;
+    }
+    if (text == "normal") {
+        out = LookupMode::Normal;
+        return true;
+    }
+    return false;
+}
+
+const char* toneMapName(ToneMap map) {
+    switch (map) {
+        case ToneMap::Linear: return "linear";
+        case ToneMap::Reinhard: return "reinhard";
+        case ToneMap::Aces: return "aces";
+    }
+    return "aces";
+}
+
+bool parseToneMap(const std::string& text, ToneMap& out) {
+    for (ToneMap m : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
+        if (text == toneMapName(m)) {
+            out = m;
+            return true;
+        }
+    return false;
+}
+
+glm::mat4 Transform::matrix() const {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
+    m = glm::rotate(m, glm::radians(rotationDegrees.y), glm::vec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(rotationDegrees.x), glm::vec3(1, 0, 0));
+    m = glm::rotate(m, glm::radians(rotationDegrees.z), glm::vec3(0, 0, 1));
+    return glm::scale(m, glm::vec3(scale));
+}
+
+glm::vec3 SceneObject::worldCentre() const {
+    if (!mesh) return transform.translation;
+    return glm::vec3(transform.matrix() * glm::vec4(mesh->bounds.centre(), 1.0f));
+}
+
+float SceneObject::worldRadius() const {
+    return mesh ? mesh->bounds.radius() * std::abs(transform.scale) : 0.0f;
+}
+
+Scene makeFigure1Scene() {
+    auto teapot = std::make_shared<const Mesh>(defaultTeapot());
+    Scene scene;
+    scene.environment.source = kBuiltinEnvironment;
+    scene.environment.faceSize = 128;
+    // A 128² face magnified to a window is blocky; a soft backdrop (level 2) keeps the eye on the
+    // teapots, as a photographer's shallow focus would. The user can set it back to 0.
+    scene.display.backgroundLambda = 2.0f;
+    struct Entry {
+        const char* name;
+        float lambda;
+        LookupMode mode;
+    };
+    const Entry entries[] = {{"mirror (λ 0)", 0.0f, LookupMode::Reflect},
+                             {"glossy (λ 3.5)", 3.5f, LookupMode::Reflect},
+                             {"glossy (λ 5)", 5.0f, LookupMode::Reflect},
+                             {"diffuse (λ 7, normal)", 7.0f, LookupMode::Normal}};
+    // In a row along x, spaced by the teapot's width plus a gap, centred on the origin.
+    const Bounds& b = teapot->bounds;
+    const float spacing = 1.15f * (b.max.x - b.min.x);
+    for (int i = 0; i < 4; ++i) {
+        SceneObject object;
+        object.name = entries[i].name;
+        object.mesh = teapot;
+        object.meshSource = "builtin:teapot";
+        object.transform.translation =
+            glm::vec3((static_cast<float>(i) - 1.5f) * spacing, 0.0f, 0.0f) - b.centre();
+        object.material.lambda = entries[i].lambda;
+        object.material.mode = entries[i].mode;
+        scene.objects.push_back(std::move(object));
+    }
+    return scene;
+}
+
+Bounds sceneBounds(const Scene& scene) {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    Bounds out{glm::vec3(inf), glm::vec3(-inf)};
+    bool any = false;
+    for (const SceneObject& object : scene.objects) {
+        if (!object.visible || !object.mesh) continue;
+        // The eight corners of the mesh box under the transform.
+        const glm::mat4 m = object.transform.matrix();
+        const Bounds& b = object.mesh->bounds;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                              (corner & 4) ? b.max.z : b.min.z);
+            const glm::vec3 w(m * glm::vec4(p, 1.0f));
+            out.min = glm::min(out.min, w);
+            out.max = glm::max(out.max, w);
+        }
+        any = true;
+    }
+    if (!any) return Bounds{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    return out;
+}
+
+ChainNeeds chainNeeds(const Scene& scene, int levelCount) {
+    ChainNeeds needs;
+    const int last = std::max(levelCount - 1, 0);
+    float highest = scene.display.showBackground ? scene.display.backgroundLambda : 0.0f;
+    for (const SceneObject& object : scene.objects) {
+        if (!object.visible) continue;
+        const Material& m = object.material;
+        if (m.mode == LookupMode::Normal && m.useIrradiance) {
+            needs.irradiance = true;
+            continue;  // the irradiance map replaces the chain for this object
+        }
+        highest = std::max(highest, m.lambda);
+    }
+    // A fractional λ blends floor(λ) and floor(λ) + 1.
+    const float clamped = std::clamp(highest, 0.0f, static_cast<float>(last));
+    needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(clamped)));
+    return needs;
+}
+
+}  // namespace mipgloss

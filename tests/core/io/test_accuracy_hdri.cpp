@@ -1,0 +1,127 @@
+// Accuracy of the default builder on real HDRIs (tests/assets/env, CC0) against the exact
+// discrete convolution, at the exponents the bake manifest declares (lambdaToExponent).
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/io/import.h"
+#include "mipgloss/ibl/metrics.h"
+#include "mipgloss/ibl/phong.h"
+#include "test_support.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace mipgloss;
+
+namespace {
+const char* kMaps[] = {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"};
+constexpr int kFaceSize = 128;
+}  // namespace
+
+// One test over all eight maps (not one per map): the border criterion is also checked on errors
+// pooled over the maps, and CTest runs each test in its own process.
+TEST(RealHdri, DefaultBuilderMatchesTheExactConvolutionAtEveryLevel) {
+    struct Pooled {
+        double borderErr2 = 0, borderRef2 = 0, interiorErr2 = 0, interiorRef2 = 0;
+    };
+    std::vector<Pooled> pooled(static_cast<std::size_t>(fullChainLevelCount(kFaceSize)));
+    for (const char* map : kMaps) {
+        const auto path = test::asset(std::string("env/") + map + ".exr");
+        MIPGLOSS_REQUIRE_ASSET(path);
+        ImportOptions o;
+        o.faceSize = kFaceSize;
+        const CubeMap base = loadEnvironment(path, o).cube;
+        const MipChain phong = buildPhongChain(base);
+        const MipChain truth = buildReferenceChain(base);
+        ASSERT_EQ(phong.levelCount(), truth.levelCount());
+        for (int k = 1; k < phong.levelCount(); ++k) {
+            const CubeMap& a = phong.levels[static_cast<std::size_t>(k)];
+            const CubeMap& b = truth.levels[static_cast<std::size_t>(k)];
+            const LevelError e = compareCubes(a, b);
+            std::printf("[hdri] %-9s level %d (n=%7.1f) rel RMS %.3f%% border %.3f%% interior %.3f%% mean %+.3f%%\n",
+                        map, k, lambdaToExponent(k, kFaceSize), 100 * e.relRms, 100 * e.relRmsBorder,
+                        100 * e.relRmsInterior, 100 * e.meanRelDiff);
+            EXPECT_LE(e.relRms, 0.02) << map << " level " << k;
+            EXPECT_LE(std::fabs(e.meanRelDiff), 0.01) << map << " level " << k;
+            // Border texels no worse than 1.5x interior ones: per map where the border error is
+            // large enough to matter (above 0.25 %, an eighth of the accuracy budget; below it a 4x4
+            // level's 4 interior texels make the ratio noise), and pooled over all maps below.
+            if (e.hasInterior && e.relRmsBorder > 0.0025) {
+                EXPECT_LE(e.relRmsBorder, 1.5 * e.relRmsInterior) << map << " level " << k;
+            }
+            Pooled& p = pooled[static_cast<std::size_t>(k)];
+            for (int y = 0; y < a.size(); ++y)
+                for (int x = 0; x < a.size(); ++x) {
+                    const double w = texelSolidAngle(x, y, a.size());
+                    const bool border = x == 0 || y == 0 || x == a.size() - 1 || y == a.size() - 1;
+                    for (Face f : kAllFaces) {
+                        const glm::dvec3 d = glm::dvec3(a.at(f, x, y)) - glm::dvec3(b.at(f, x, y));
+                        const glm::dvec3 r(b.at(f, x, y));
+                        (border ? p.borderErr2 : p.interiorErr2) += w * glm::dot(d, d);
+                        (border ? p.borderRef2 : p.interiorRef2) += w * glm::dot(r, r);
+                    }
+                }
+        }
+    }
+    for (int k = 1; k < static_cast<int>(pooled.size()); ++k) {
+        const Pooled& p = pooled[static_cast<std::size_t>(k)];
+        if (p.interiorRef2 == 0.0) continue;  // 2x2 and 1x1 faces have no interior texels
+        const double border = std::sqrt(p.borderErr2 / p.borderRef2);
+        const double interior = std::sqrt(p.interiorErr2 / p.interiorRef2);
+        std::printf("[hdri pooled] level %d border %.4f%% interior %.4f%%\n", k, 100 * border, 100 * interior);
+        if (border > 1e-5) {  // levels 1-3 filter the base exactly: both are float rounding
+            EXPECT_LE(border, 1.5 * interior) << "level " << k;
+        }
+    }
+}
+
+namespace {
+
+// Mean luminance jump across cube edges and just inside them (edge texel vs its inward neighbour).
+void accumulateJumps(const CubeMap& level, double& across, double& inside) {
+    forEachEdgePair(level.size(), [&](Face f, int ex, int ey, const TexelRef& o, int ix, int iy) {
+        const double a = luminance(level.at(f, ex, ey));
+        across += std::fabs(a - luminance(level.at(o.face, o.x, o.y)));
+        inside += std::fabs(a - luminance(level.at(f, ix, iy)));
+    });
+}
+
+}  // namespace
+
+TEST(Seams, NoLevelOfTheDefaultChainJumpsMoreAcrossEdgesThanInsideFaces) {
+    // Content decides where a real map has edges, so each of three maps is seen in 24 random orientations
+    // (the cube resampled from a 256² import) and the jumps summed over all of them; what remains is the filter's
+    // own behaviour at cube edges. Levels of 2×2 and larger (a 1×1 face has no inside pair).
+    constexpr int kSize = 64;
+    const int levels = fullChainLevelCount(kSize);
+    std::vector<double> phongAcross(levels), phongInside(levels), boxAcross(levels), boxInside(levels);
+    for (const char* map : {"sunset", "forest", "studio"}) {
+        const auto path = test::asset(std::string("env/") + map + ".exr");
+        MIPGLOSS_REQUIRE_ASSET(path);
+        ImportOptions o;
+        o.faceSize = 256;
+        const CubeMap fine = loadEnvironment(path, o).cube;
+        std::mt19937 rng(11);
+        std::normal_distribution<float> g;
+        for (int trial = 0; trial < 24; ++trial) {
+            const glm::quat q = glm::normalize(glm::quat(g(rng), g(rng), g(rng), g(rng)));
+            const CubeMap base = test::cubeFromFunction(kSize, [&](const glm::vec3& d) { return fine.sample(q * d); });
+            const MipChain phong = buildPhongChain(base), box = buildBoxChain(base);
+            for (int k = 1; k < levels - 1; ++k) {
+                accumulateJumps(phong.levels[static_cast<std::size_t>(k)], phongAcross[k], phongInside[k]);
+                accumulateJumps(box.levels[static_cast<std::size_t>(k)], boxAcross[k], boxInside[k]);
+            }
+        }
+    }
+    for (int k = 1; k < levels - 1; ++k) {
+        const double phongRatio = phongAcross[k] / phongInside[k], boxRatio = boxAcross[k] / boxInside[k];
+        std::printf("[seam] level %d (%2d^2): across/inside jump  phong %.3f  box %.3f\n", k, levelSize(kSize, k),
+                    phongRatio, boxRatio);
+        EXPECT_LE(phongRatio, 1.0) << "level " << k;
+    }
+    // The box chain's edges are rougher than the default's at its smallest levels.
+    for (int k = levels - 3; k < levels - 1; ++k)
+        EXPECT_GT(boxAcross[k] / boxInside[k], phongAcross[k] / phongInside[k]) << "level " << k;
+}

@@ -1,0 +1,199 @@
+// The scene model, the camera maths and "build only what the scene needs".
+#include "test_support.h"
+
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/scene/camera.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+
+#include <chrono>
+#include <cstdio>
+
+namespace mipgloss {
+namespace {
+
+// The largest |NDC| coordinate of the box's corners seen by the camera.
+float largestNdc(const OrbitCamera& camera, const Bounds& b, float aspect) {
+    const glm::mat4 vp = camera.projection(aspect, b) * camera.view();
+    float largest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                          (corner & 4) ? b.max.z : b.min.z);
+        const glm::vec4 c = vp * glm::vec4(p, 1.0f);
+        largest = std::max({largest, std::abs(c.x / c.w), std::abs(c.y / c.w)});
+        EXPECT_GT(c.w, 0.0f) << "corner behind the camera";
+        EXPECT_LE(std::abs(c.z / c.w), 1.0f) << "corner clipped by near or far plane";
+    }
+    return largest;
+}
+
+TEST(OrbitCamera, FrameAllFillsTheViewWhateverTheScale) {
+    // A 0.2-unit scan and a 120-unit one, off the origin: the same picture.
+    for (const float scale : {0.2f, 1.0f, 120.0f}) {
+        const Bounds b{glm::vec3(3.0f, -1.0f, 2.0f) * scale, glm::vec3(3.5f, -0.2f, 2.3f) * scale};
+        for (const float aspect : {0.5f, 1.0f, 2.667f}) {
+            OrbitCamera camera;
+            camera.yawDegrees = 40.0f;
+            camera.pitchDegrees = 25.0f;
+            camera.frame(b, aspect, 1.1f);
+            const float largest = largestNdc(camera, b, aspect);
+            // Every corner inside the view (margin 1.1), and the box filling it to within the
+            // slack of a box seen at an angle (a corner reaches 1/1.1 of the edge at the
+            // limiting side).
+            EXPECT_LE(largest, 1.0f / 1.1f + 1e-4f) << "scale " << scale << " aspect " << aspect;
+            EXPECT_GE(largest, 0.85f / 1.1f) << "scale " << scale << " aspect " << aspect;
+        }
+    }
+}
+
+TEST(OrbitCamera, PitchStaysBelowThePoles) {
+    OrbitCamera camera;
+    camera.orbit(0.0f, 500.0f);
+    EXPECT_LT(camera.pitchDegrees, 90.0f);
+    camera.orbit(0.0f, -1000.0f);
+    EXPECT_GT(camera.pitchDegrees, -90.0f);
+    camera.zoom(0.0f);  // absurd: ignored
+    camera.zoom(std::nanf(""));
+    EXPECT_TRUE(std::isfinite(camera.distance));
+    EXPECT_GT(camera.distance, 0.0f);
+}
+
+TEST(Frustum, CullsSpheresWhollyOutsideOnly) {
+    OrbitCamera camera;
+    camera.target = glm::vec3(0.0f);
+    camera.distance = 10.0f;
+    const Frustum f = Frustum::fromViewProjection(camera.projection(1.0f, Bounds{glm::vec3(-1.2f), glm::vec3(1.2f)}) * camera.view());
+    EXPECT_TRUE(f.intersectsSphere(glm::vec3(0.0f), 1.0f));
+    EXPECT_FALSE(f.intersectsSphere(glm::vec3(100.0f, 0.0f, 0.0f), 1.0f));   // far to the side
+    EXPECT_FALSE(f.intersectsSphere(camera.position() + glm::vec3(0, 0, 5), 1.0f));  // behind
+    // Straddling the left plane: kept.
+    const float halfWidth = 10.0f * std::tan(glm::radians(camera.fovYDegrees) * 0.5f);
+    EXPECT_TRUE(f.intersectsSphere(glm::vec3(-halfWidth - 0.5f, 0.0f, 0.0f), 1.0f));
+}
+
+TEST(Figure1Scene, IsThePapersFigure) {
+    const Scene scene = makeFigure1Scene();
+    ASSERT_EQ(scene.objects.size(), 4u);
+    const float lambdas[] = {0.0f, 3.5f, 5.0f, 7.0f};
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(scene.objects[i].material.lambda, lambdas[i]);
+        EXPECT_EQ(scene.objects[i].material.mode, i == 3 ? LookupMode::Normal : LookupMode::Reflect);
+        EXPECT_EQ(scene.objects[i].mesh, scene.objects[0].mesh) << "one teapot, shared";
+        EXPECT_FALSE(scene.objects[i].material.sharperAtGrazing) << "the paper's look by default";
+    }
+    EXPECT_EQ(scene.environment.faceSize, 128);
+    EXPECT_EQ(scene.environment.source, kBuiltinEnvironment);
+    // In a row along x, not overlapping.
+    for (std::size_t i = 1; i < 4; ++i)
+        EXPECT_GT(scene.objects[i].worldCentre().x - scene.objects[i - 1].worldCentre().x,
+                  scene.objects[0].mesh->bounds.max.x - scene.objects[0].mesh->bounds.min.x);
+}
+
+Scene sceneWith(std::initializer_list<Material> materials) {
+    Scene scene;
+    auto sphere = std::make_shared<const Mesh>(makeSphere(8, 16));
+    for (const Material& m : materials) {
+        SceneObject o;
+        o.mesh = sphere;
+        o.material = m;
+        scene.objects.push_back(o);
+    }
+    return scene;
+}
+
+TEST(ChainNeeds, FollowTheHighestLambdaInUse) {
+    const int levels = 8;  // 128²
+    EXPECT_EQ(chainNeeds(makeFigure1Scene(), levels), (ChainNeeds{7, false}));
+    EXPECT_EQ(chainNeeds(sceneWith({Material{}}), levels), (ChainNeeds{0, false})) << "mirrors only";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{3.2f}}), levels).lastFilteredLevel, 4) << "3.2 blends 3 and 4";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{40.0f}}), levels).lastFilteredLevel, 7) << "clamped";
+    Scene hidden = sceneWith({Material{1.0f}, Material{6.0f}});
+    hidden.objects[1].visible = false;
+    EXPECT_EQ(chainNeeds(hidden, levels).lastFilteredLevel, 1) << "hidden objects need nothing";
+    Scene background = sceneWith({Material{1.0f}});
+    background.display.backgroundLambda = 2.5f;
+    EXPECT_EQ(chainNeeds(background, levels).lastFilteredLevel, 3) << "the background's blur counts";
+    Material irradiance{7.0f, LookupMode::Normal, true};
+    EXPECT_EQ(chainNeeds(sceneWith({Material{2.0f}, irradiance}), levels), (ChainNeeds{2, true}))
+        << "the irradiance map replaces the chain for that object";
+}
+
+TEST(PrepareEnvironment, BuildsOnlyWhatTheSceneNeedsAndReusesTheRest) {
+    EnvironmentSettings settings;
+    settings.faceSize = 64;
+    const PreparedEnvironment mirrors = prepareEnvironment(settings, ChainNeeds{0, false});
+    EXPECT_EQ(mirrors.filteredThrough, 0);
+    EXPECT_FALSE(mirrors.irradiance) << "no object asked for it";
+    // Beyond the filtered levels: the cheap box filter of the level before.
+    const MipChain box = buildBoxChain(*mirrors.base);
+    ASSERT_EQ(mirrors.levelCount(), box.levelCount());
+    for (int level = 1; level < box.levelCount(); ++level) {
+        const CubeMap& a = mirrors.chain->levels[static_cast<std::size_t>(level)];
+        const CubeMap& b = box.levels[static_cast<std::size_t>(level)];
+        for (Face f : kAllFaces) EXPECT_EQ(a.at(f, 0, 0), b.at(f, 0, 0)) << "level " << level;
+    }
+
+    // A glossier object: the chain is rebuilt, the import is not.
+    const PreparedEnvironment glossy = prepareEnvironment(settings, ChainNeeds{4, false}, &mirrors);
+    EXPECT_EQ(glossy.base, mirrors.base);
+    EXPECT_NE(glossy.chain, mirrors.chain);
+    EXPECT_EQ(glossy.filteredThrough, 4);
+    // Back to a lower λ: nothing to build, the range never shrinks.
+    const PreparedEnvironment back = prepareEnvironment(settings, ChainNeeds{2, false}, &glossy);
+    EXPECT_EQ(back.chain, glossy.chain);
+    EXPECT_TRUE(glossy.satisfies(settings, ChainNeeds{3, false}));
+    EXPECT_FALSE(glossy.satisfies(settings, ChainNeeds{5, false}));
+    // Irradiance when asked, then kept.
+    const PreparedEnvironment diffuse = prepareEnvironment(settings, ChainNeeds{2, true}, &back);
+    ASSERT_TRUE(diffuse.irradiance);
+    EXPECT_EQ(diffuse.chain, back.chain);
+    const PreparedEnvironment again = prepareEnvironment(settings, ChainNeeds{0, false}, &diffuse);
+    EXPECT_EQ(again.irradiance, diffuse.irradiance);
+    // Another builder: same import, new chain.
+    EnvironmentSettings boxSettings = settings;
+    boxSettings.builder = "box";
+    const PreparedEnvironment other = prepareEnvironment(boxSettings, ChainNeeds{4, false}, &again);
+    EXPECT_EQ(other.base, again.base);
+    EXPECT_NE(other.chain, again.chain);
+}
+
+TEST(PrepareEnvironment, BadFileAndBuilderAreErrorsNamingThem) {
+    EnvironmentSettings settings;
+    settings.source = "/nonexistent/sky.exr";
+    try {
+        prepareEnvironment(settings, ChainNeeds{});
+        FAIL() << "no error";
+    } catch (const EnvError& e) {
+        EXPECT_NE(std::string(e.what()).find("sky.exr"), std::string::npos) << e.what();
+    }
+    settings = EnvironmentSettings{};
+    settings.faceSize = 16;
+    settings.builder = "nonsense";
+    EXPECT_THROW(prepareEnvironment(settings, ChainNeeds{}), std::invalid_argument);
+}
+
+// A benchmark, not a test of time: prints what filtering only the reachable levels saves.
+TEST(PrepareEnvironment, PrintsWhatSkippingLevelsSaves) {
+    EnvironmentSettings settings;
+    settings.faceSize = 256;
+    const PreparedEnvironment imported = prepareEnvironment(settings, ChainNeeds{0, false});
+    for (const int through : {0, 3, 5, 8}) {
+        const auto start = std::chrono::steady_clock::now();
+        BuildOptions options;
+        options.lastFilteredLevel = through;
+        const MipChain chain = buildChain(*imported.base, "phong", options);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_EQ(chain.levelCount(), 9);
+        std::printf("[ skip ] face 256, phong filter through level %d of 8: %.3f s\n", through, seconds);
+    }
+}
+
+}  // namespace
+}  // namespace mipgloss
