@@ -38,9 +38,9 @@ namespace {
 const char* kUsage = R"(mipgloss )" MIPGLOSS_VERSION R"( - blurry reflections from one cube-map mip chain
 
 usage:
-  mipgloss bake [ENV] --out DIR [--method NAME] [--size N] [--layout L]
+  mipgloss bake [ENV] --out DIR [--builder NAME] [--size N] [--layout L]
                 [--handedness right|left] [--irradiance] [--quiet]
-  mipgloss bench [--env FILE]... [--sizes 128,256,512,1024] [--methods a,b,...]
+  mipgloss bench [--env FILE]... [--sizes 128,256,512,1024] [--builders a,b,...]
                  [--repeat R]
   mipgloss --help | --version
 
@@ -48,14 +48,14 @@ bake: builds the mip chain of an environment and writes
   DIR/level<k>/{px,nx,py,ny,pz,nz}.exr   every level, float, OpenGL face orientation, row 0 = t 0
   DIR/irradiance/{px..nz}.exr           E(N)/pi, with --irradiance
   DIR/environment_mips.exr              one mip-mapped OpenEXR cube environment map
-  DIR/manifest.json                     method, face size, per level: size, lambda, Phong exponent
+  DIR/manifest.json                     builder, face size, per level: size, lambda, Phong exponent
   The directory is replaced only when the bake is complete.
   ENV            environment: a lat-long (2:1) HDR, a cross (4:3 or 3:4), a strip (6:1 or
                  1:6), a folder of six face images, or one face image of a named family
                  (px/nx.., posx/negx.., right/left/top/bottom/front/back, rt/lf/up/dn/ft/bk).
                  EXR, HDR, PNG, JPEG, TIFF. Omitted: the embedded default environment.
   --out DIR      output directory (required)
-  --method NAME  mip builder: phong (default; cross-face Phong lobes), box (per-face 2x2, what
+  --builder NAME mip builder (--method is the old name): phong (default; cross-face Phong lobes), box (per-face 2x2, what
                  glGenerateMipmap does), paper (Ashikhmin & Ghosh 2002 with texture borders),
                  reference (exact convolution; slow)
   --size N       resample the input to base face size N (default: native; lat-long: width/4;
@@ -72,7 +72,7 @@ bench: times every builder at each face size and prints, per level, the relative
   asserted.
   --env FILE     environment(s) to use (repeatable; default: the embedded default)
   --sizes LIST   face sizes (default 128,256,512)
-  --methods LIST builders to time (default: all but reference, which is the truth)
+  --builders LIST builders to time (default: all but reference, which is the truth)
   --repeat R     timing runs per builder, the median is reported (default 3)
 
 Exit status: 0 on success, 1 on bad input (the message names the file), 2 on bad usage.
@@ -103,7 +103,10 @@ int runBake(Args args) {
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--out") req.outDir = args.value(a);
-        else if (a == "--method") req.method = args.value(a);
+        else if (a == "--builder" || a == "--method") {
+            const std::string v = args.value(a);
+            if (!parseBuilder(v, req.builder)) throw UsageError("unknown builder '" + v + "'");
+        }
         else if (a == "--size") req.import.faceSize = parsePositive(a, args.value(a));
         else if (a == "--layout") {
             const std::string v = args.value(a);
@@ -120,7 +123,6 @@ int runBake(Args args) {
         else throw UsageError("more than one environment given ('" + req.environment.string() + "', '" + a + "')");
     }
     if (req.outDir.empty()) throw UsageError("bake needs --out DIR");
-    if (!isBuilderName(req.method)) throw UsageError("unknown method '" + req.method + "'");
     const bool tty = isatty(STDERR_FILENO) != 0;
     std::string lastStage;
     int lastPercent = -1;
@@ -128,17 +130,18 @@ int runBake(Args args) {
         req.progress = [&](const std::string& stage, float f) {
             const int percent = static_cast<int>(f * 100.0f);
             if (stage == lastStage && (percent == lastPercent || (!tty && percent < 100 && percent - lastPercent < 25)))
-                return;
+                return true;
             if (tty) std::fprintf(stderr, "\r%-24s %3d%%%s", stage.c_str(), percent, percent >= 100 ? "\n" : "");
             else std::fprintf(stderr, "%s %d%%\n", stage.c_str(), percent);
             lastStage = stage;
             lastPercent = percent;
+            return true;
         };
     const BakeSummary s = bake(req);
     for (const std::string& w : s.report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::printf("baked %s (%s, face %d, %zu levels, builder %s) into %s\n",
                 req.environment.empty() ? "the embedded default environment" : req.environment.c_str(),
-                layoutName(s.report.layout), s.faceSize, s.levels.size(), req.method.c_str(), s.outDir.c_str());
+                layoutName(s.report.layout), s.faceSize, s.levels.size(), builderName(req.builder), s.outDir.c_str());
     std::printf("  import %.3f s, build %.3f s, write %.3f s\n", s.importSeconds, s.buildSeconds, s.writeSeconds);
     std::printf("  cube map file: %s\n  manifest: %s\n", s.cubeFile.c_str(), (s.outDir / "manifest.json").c_str());
     return 0;
@@ -152,7 +155,7 @@ double median(std::vector<double> v) {
 int runBench(Args args) {
     std::vector<fs::path> envs;
     std::vector<int> sizes{128, 256, 512};
-    std::vector<std::string> methods{"phong", "box", "paper"};
+    std::vector<Builder> builders{Builder::Phong, Builder::Box, Builder::Paper};
     int repeat = 3;
     while (!args.empty()) {
         const std::string a = args.next();
@@ -160,10 +163,13 @@ int runBench(Args args) {
         else if (a == "--sizes") {
             sizes.clear();
             for (const auto& s : splitList(args.value(a))) sizes.push_back(parsePositive(a, s));
-        } else if (a == "--methods") {
-            methods = splitList(args.value(a));
-            for (const auto& m : methods)
-                if (!isBuilderName(m)) throw UsageError("unknown method '" + m + "'");
+        } else if (a == "--builders" || a == "--methods") {
+            builders.clear();
+            for (const auto& name : splitList(args.value(a))) {
+                Builder b;
+                if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "'");
+                builders.push_back(b);
+            }
         } else if (a == "--repeat") repeat = parsePositive(a, args.value(a));
         else if (a == "--help" || a == "-h") { std::cout << kUsage; return 0; }
         else throw UsageError("unknown option '" + a + "'");
@@ -193,8 +199,8 @@ int runBench(Args args) {
             std::printf("%-8s %9s %8s |", "builder", "time s", "x box");
             for (int k = 1; k < truth.levelCount(); ++k) std::printf(" L%-5d", k);
             std::printf(" | %7s %7s %9s %9s\n", "median", "worst", "mean off", "bord/int");
-            std::map<std::string, double> times;
-            for (const std::string& m : methods) {
+            std::map<Builder, double> times;
+            for (const Builder m : builders) {
                 std::vector<double> t;
                 MipChain chain;
                 for (int r = 0; r < repeat; ++r) {
@@ -204,10 +210,10 @@ int runBench(Args args) {
                 }
                 times[m] = median(t);
             }
-            for (const std::string& m : methods) {
+            for (const Builder m : builders) {
                 const MipChain chain = buildChain(base, m);
-                const double boxTime = times.count("box") ? times["box"] : 0.0;
-                std::printf("%-8s %9.4f %8.1f |", m.c_str(), times[m], boxTime > 0 ? times[m] / boxTime : 0.0);
+                const double boxTime = times.count(Builder::Box) ? times[Builder::Box] : 0.0;
+                std::printf("%-8s %9.4f %8.1f |", builderName(m), times[m], boxTime > 0 ? times[m] / boxTime : 0.0);
                 std::vector<double> errs;
                 double worstMean = 0.0, worstBorderRatio = 0.0;
                 for (int k = 1; k < truth.levelCount(); ++k) {

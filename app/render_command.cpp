@@ -31,7 +31,7 @@ namespace mipgloss::app {
 
 const char* const kRenderUsage = R"(
   mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--lambda L]
-                  [--mode reflect|normal] [--size WxH] [--env-size N] [--method NAME]
+                  [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
                   --out IMAGE.png
@@ -47,7 +47,7 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   --mode M       reflect (reflection vector) or normal (surface normal) for every object
   --size WxH     image size (default 1024x384 for the default scene, else 800x600)
   --env-size N   base face size of the cube (default: the scene's, 128)
-  --method NAME  mip builder (default phong)
+  --builder NAME mip builder (default phong; --method is the old name)
   --out FILE     output image (PNG, or any format Qt writes, by extension)
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
@@ -121,7 +121,7 @@ int runRender(Args args, const char* argv0) {
     std::optional<LookupMode> mode;
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
-    std::optional<std::string> method;
+    std::optional<Builder> builder;
     bool noBackground = false, quiet = false;
     int width = 0, height = 0;
     while (!args.empty()) {
@@ -137,9 +137,11 @@ int runRender(Args args, const char* argv0) {
         else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
         else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
         else if (a == "--samples") samples = static_cast<int>(parseFloat(a, value(), 0.0f, 16.0f));
-        else if (a == "--method") {
-            method = value();
-            if (!isBuilderName(*method)) throw UsageError("unknown method '" + *method + "'");
+        else if (a == "--builder" || a == "--method") {
+            const std::string name = value();
+            Builder b;
+            if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "'");
+            builder = b;
         } else if (a == "--mode") {
             LookupMode m;
             if (!parseLookupMode(value(), m)) throw UsageError("--mode is reflect or normal");
@@ -194,7 +196,7 @@ int runRender(Args args, const char* argv0) {
     }
     if (envPath) scene.environment.source = envPath->string();
     if (envSize) scene.environment.faceSize = *envSize;
-    if (method) scene.environment.builder = *method;
+    if (builder) scene.environment.builder = *builder;
     for (SceneObject& o : scene.objects) {
         if (lambda) o.material.lambda = *lambda;
         if (mode) o.material.mode = *mode;
@@ -229,8 +231,8 @@ int runRender(Args args, const char* argv0) {
         std::cerr << "mipgloss: " << outPath->string() << ": " << width << "x" << height << ", "
                   << scene.objects.size() << " objects (" << c.objectsDrawn << " drawn, "
                   << c.objectsCulled << " culled), environment " << environment->settings.faceSize
-                  << "² " << environment->settings.builder << " filtered through level "
-                  << environment->filteredThrough << " of " << environment->levelCount() - 1
+                  << "² " << builderName(environment->settings.builder) << " filtered through level "
+                  << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
                   << (environment->irradiance ? ", irradiance" : "") << ", prepared in "
                   << prepareSeconds << " s; " << renderer.glDescription() << '\n';
     }

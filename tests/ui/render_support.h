@@ -2,6 +2,7 @@
 // and the CPU side of the paper's lookup (the same direction, the same level, on the core's chain).
 #pragma once
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/scene/camera.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/scene/environment.h"
@@ -72,9 +73,7 @@ inline Scene sphereScene(const Material& material) {
 inline QImage hdrToImage(const std::vector<glm::vec4>& hdr, int width, int height, float scale = 1.0f) {
     QImage image(width, height, QImage::Format_RGB32);
     auto encode = [](float c) {
-        c = std::clamp(c, 0.0f, 1.0f);
-        c = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-        return static_cast<int>(std::lround(c * 255.0f));
+        return static_cast<int>(std::lround(linearToSrgb(std::clamp(static_cast<double>(c), 0.0, 1.0)) * 255.0));
     };
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -112,19 +111,8 @@ inline std::optional<glm::vec3> hitUnitSphere(const Ray& ray) {
 // direction field, from its finite differences to the next pixel in x and y.
 inline float footprintLod(const glm::vec3& d, const glm::vec3& dx, const glm::vec3& dy, int faceSize) {
     const FaceCoord c = directionToFace(d);
-    // Face coordinates of v on d's face (cubemap.h's table), as GL differentiates them.
-    auto onFace = [&](const glm::vec3& v) {
-        float sc = 0, tc = 0, ma = 1;
-        switch (c.face) {
-            case Face::PX: sc = -v.z; tc = -v.y; ma = v.x; break;
-            case Face::NX: sc = v.z; tc = -v.y; ma = -v.x; break;
-            case Face::PY: sc = v.x; tc = v.z; ma = v.y; break;
-            case Face::NY: sc = v.x; tc = -v.z; ma = -v.y; break;
-            case Face::PZ: sc = v.x; tc = -v.y; ma = v.z; break;
-            case Face::NZ: sc = -v.x; tc = -v.y; ma = -v.z; break;
-        }
-        return glm::vec2(0.5f * (sc / ma + 1.0f), 0.5f * (tc / ma + 1.0f));
-    };
+    // Face coordinates of v on d's face plane, as GL differentiates them.
+    auto onFace = [&](const glm::vec3& v) { return faceCoordOnPlane(c.face, v); };
     const glm::vec2 st = onFace(d);
     const glm::vec2 ddx = (onFace(dx) - st) * static_cast<float>(faceSize);
     const glm::vec2 ddy = (onFace(dy) - st) * static_cast<float>(faceSize);

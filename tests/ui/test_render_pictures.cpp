@@ -48,7 +48,7 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
     const auto env = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
     EXPECT_EQ(env->settings.faceSize, 128);
-    EXPECT_EQ(env->filteredThrough, 7) << "λ = 7 reaches the last level of a 128² chain";
+    EXPECT_EQ(env->lastFilteredLevel, 7) << "λ = 7 reaches the last level of a 128² chain";
     EXPECT_FALSE(env->irradiance) << "no object asks for the irradiance map";
 
     // Twice the command line's default size, so the pixel footprint (mipmapping) blurs the mirror
@@ -234,7 +234,7 @@ struct SeamMeasure {
     double ratio() const { return stepAcross / stepInside; }
 };
 
-SeamMeasure seamsOfDiffuseSphere(const std::string& builder, float lambda, QImage* picture) {
+SeamMeasure seamsOfDiffuseSphere(Builder builder, float lambda, QImage* picture) {
     ui::OffscreenRenderer* renderer = test::sharedRenderer();
     Material material;
     material.lambda = lambda;
@@ -293,8 +293,8 @@ TEST(SeamPicture, DiffuseSphereShowsNoCubeEdges) {
     // Faces of 8², 4², 2² and 1² texels at 128²: the paper's diffuse regime.
     for (const float lambda : {4.0f, 5.0f, 6.0f, 7.0f}) {
         QImage boxPicture, defaultPicture;
-        const SeamMeasure box = seamsOfDiffuseSphere("box", lambda, &boxPicture);
-        const SeamMeasure phong = seamsOfDiffuseSphere("phong", lambda, &defaultPicture);
+        const SeamMeasure box = seamsOfDiffuseSphere(Builder::Box, lambda, &boxPicture);
+        const SeamMeasure phong = seamsOfDiffuseSphere(Builder::Phong, lambda, &defaultPicture);
         const std::string tag = "lambda" + std::to_string(static_cast<int>(lambda));
         boxPicture.save(QString::fromStdString((dir / ("seams_box_" + tag + ".png")).string()));
         defaultPicture.save(QString::fromStdString((dir / ("seams_default_" + tag + ".png")).string()));

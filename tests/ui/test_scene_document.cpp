@@ -111,7 +111,7 @@ TEST(SceneDocument, SettersEmitOnlyOnChange) {
     EXPECT_EQ(doc.object(0).name, "renamed");
 
     EnvironmentSettings e = doc.scene().environment;
-    e.builder = "box";
+    e.builder = Builder::Box;
     doc.setEnvironment(e);
     DisplaySettings d = doc.scene().display;
     d.exposureEv = 1.0f;

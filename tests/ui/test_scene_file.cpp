@@ -66,7 +66,7 @@ Scene figure1WithBunny() {
     bunny.material.tint = {0.9f, 0.5f, 0.125f};
     bunny.visible = false;
     scene.objects.push_back(bunny);
-    scene.environment.builder = "box";
+    scene.environment.builder = Builder::Box;
     scene.environment.faceSize = 64;
     scene.environment.rotationDegrees = 30.0f;
     scene.environment.handedness = Handedness::Left;

@@ -97,7 +97,7 @@ void EnvironmentManager::startJob() {
             };
             result = std::make_shared<PreparedEnvironment>(
                 prepareEnvironment(settings, needs, previous.get(), progress));
-        } catch (const BuildCancelled&) {
+        } catch (const Cancelled&) {
             result.reset();
         } catch (const std::exception& e) {
             error = QString::fromStdString(e.what());

@@ -342,9 +342,11 @@ QWidget* MainWindow::buildEnvironmentDock() {
 
     builder_ = new QComboBox(panel);
     builder_->setObjectName(QStringLiteral("builderCombo"));
-    for (const std::string& name : builderNames()) builder_->addItem(QString::fromStdString(name));
+    for (const Builder b : kAllBuilders) builder_->addItem(QString::fromLatin1(builderName(b)));
     connect(builder_, &QComboBox::currentTextChanged, this, [editEnvironment](const QString& name) {
-        editEnvironment([&](EnvironmentSettings& s) { s.builder = name.toStdString(); });
+        Builder builder;
+        if (parseBuilder(name.toStdString(), builder))
+            editEnvironment([&](EnvironmentSettings& s) { s.builder = builder; });
     });
     form->addRow(tr("Mip builder"), builder_);
 
@@ -468,7 +470,7 @@ void MainWindow::refreshEnvironmentWidgets() {
 
     const QSignalBlocker b1(builder_), b2(faceSize_), b3(handedness_), b4(rotation_),
         b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_);
-    builder_->setCurrentText(QString::fromStdString(s.builder));
+    builder_->setCurrentText(QString::fromLatin1(builderName(s.builder)));
     int sizeIndex = faceSize_->findData(s.faceSize);
     if (sizeIndex < 0) {  // a size from a scene file or the command line
         faceSize_->addItem(squared(s.faceSize), s.faceSize);
@@ -495,10 +497,10 @@ void MainWindow::refreshEnvironmentWidgets() {
                              "of %7%8")
                               .arg(environmentName(current->settings.source))
                               .arg(squared(current->base ? current->base->size() : 0))
-                              .arg(QString::fromStdString(current->settings.builder))
+                              .arg(QString::fromLatin1(builderName(current->settings.builder)))
                               .arg(current->importSeconds, 0, 'f', 2)
                               .arg(current->buildSeconds, 0, 'f', 2)
-                              .arg(current->filteredThrough)
+                              .arg(current->lastFilteredLevel)
                               .arg(current->levelCount() - 1)
                               .arg(current->irradiance ? tr(", irradiance map") : QString()));
     } else {
@@ -512,7 +514,7 @@ void MainWindow::refreshStatus() {
     QString text = QStringLiteral("%1 · %2 · %3")
                        .arg(environmentName(s.source))
                        .arg(squared(current && current->base ? current->base->size() : s.faceSize))
-                       .arg(QString::fromStdString(s.builder));
+                       .arg(QString::fromLatin1(builderName(s.builder)));
     if (!current) text += tr(" (loading)");
     envStatus_->setText(text);
 }

@@ -1,5 +1,6 @@
 #include "mipgloss/ui/material_panel.h"
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/scene_document.h"
 
@@ -22,14 +23,6 @@
 #include <cmath>
 
 namespace mipgloss::ui {
-
-double srgbToLinear(double encoded) {
-    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-}
-
-double linearToSrgb(double linear) {
-    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
 
 QColor colorFromLinear(const Rgb& linear) {
     auto encode = [](float c) {

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/renderer.h"
 
+#include "mipgloss/ibl/phong.h"
+
 #include <QFile>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions_4_1_Core>
@@ -368,7 +370,6 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         const int locLookup = program.uniformLocation("uLookup");
         const int locGrazing = program.uniformLocation("uSharperAtGrazing");
         const int locLambda = program.uniformLocation("uLambda");
-        const float maxLevel = static_cast<float>(std::max(d.environmentLevels - 1, 0));
         const bool irradianceReady = d.uploadedIrradiance != nullptr;
 
         for (const SceneObject& object : scene.objects) {
@@ -379,7 +380,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
             }
             const GpuMesh& mesh = d.gpuMesh(object.mesh);
             const Material& m = object.material;
-            const float lambda = std::clamp(std::isfinite(m.lambda) ? m.lambda : 0.0f, 0.0f, maxLevel);
+            const float lambda = static_cast<float>(clampLambda(m.lambda, d.environmentLevels));
             int lookup = m.mode == LookupMode::Reflect ? 0 : 1;
             if (lookup == 1 && m.useIrradiance && irradianceReady) lookup = 2;
             const glm::mat4 model = object.transform.matrix();
@@ -409,7 +410,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
             gl->glUniformMatrix3fv(bg.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
                                    glm::value_ptr(envRotation));
             gl->glUniform1f(bg.uniformLocation("uLod"),
-                            std::clamp(scene.display.backgroundLambda, 0.0f, maxLevel));
+                            static_cast<float>(clampLambda(scene.display.backgroundLambda, d.environmentLevels)));
             gl->glBindSampler(0, d.sampler(0.0f));
             gl->glDepthFunc(GL_LEQUAL);
             gl->glDepthMask(GL_FALSE);

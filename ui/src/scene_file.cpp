@@ -167,9 +167,9 @@ public:
             fail("\"environment.handedness\" must be \"right\" or \"left\", not \"" + hand + "\"");
         s.faceSize = clamped(integer(o, "faceSize", where, s.faceSize), kMinFaceSize, kMaxFaceSize,
                              "environment.faceSize");
-        const std::string phong(kDefaultBuilder);
-        s.builder = string(o, "builder", where, &phong);
-        if (!isBuilderName(s.builder)) fail("unknown \"environment.builder\" \"" + s.builder + "\"");
+        const std::string defaultBuilder = builderName(kDefaultBuilder);
+        const std::string builder = string(o, "builder", where, &defaultBuilder);
+        if (!parseBuilder(builder, s.builder)) fail("unknown \"environment.builder\" \"" + builder + "\"");
         s.rotationDegrees = static_cast<float>(
             std::remainder(number(o, "rotationDegrees", where, s.rotationDegrees), 360.0));
         return s;
@@ -291,7 +291,7 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
         {"layout", layoutName(e.layout)},
         {"handedness", handednessName(e.handedness)},
         {"faceSize", e.faceSize},
-        {"builder", QString::fromStdString(e.builder)},
+        {"builder", builderName(e.builder)},
         {"rotationDegrees", e.rotationDegrees},
     };
     const DisplaySettings& d = scene.display;

@@ -88,15 +88,13 @@ CubeMap boxDownsample(const CubeMap& src, int dstSize) {
     return dst;
 }
 
-class Progress {
+class BuildProgress {
 public:
-    explicit Progress(const BuildOptions& o) : fn_(o.progress) {}
-    void report(float fraction) const {
-        if (fn_ && !fn_(fraction)) throw BuildCancelled{};
-    }
+    explicit BuildProgress(const BuildOptions& o) : fn_(o.progress) {}
+    void report(float fraction) const { reportProgress(fn_, "build", fraction); }
 
 private:
-    const std::function<bool(float)>& fn_;
+    const mipgloss::Progress& fn_;
 };
 
 bool filtered(const BuildOptions& o, int level) {
@@ -120,21 +118,34 @@ int powerOfTwoFactor(int n) {
 
 }  // namespace
 
-std::vector<std::string> builderNames() {
-    return {std::string(kDefaultBuilder), "box", "paper", "reference"};
+const char* builderName(Builder builder) {
+    switch (builder) {
+        case Builder::Phong: return "phong";
+        case Builder::Box: return "box";
+        case Builder::Paper: return "paper";
+        case Builder::Reference: return "reference";
+    }
+    return "phong";
 }
 
-bool isBuilderName(std::string_view name) {
-    const auto names = builderNames();
-    return std::find(names.begin(), names.end(), name) != names.end();
+bool parseBuilder(std::string_view text, Builder& out) {
+    for (Builder b : kAllBuilders) {
+        if (text == builderName(b)) {
+            out = b;
+            return true;
+        }
+    }
+    return false;
 }
 
-MipChain buildChain(const CubeMap& base, std::string_view method, const BuildOptions& options) {
-    if (method == "box") return buildBoxChain(base, options);
-    if (method == "paper") return buildPaperChain(base, options);
-    if (method == kDefaultBuilder) return buildPhongChain(base, options);
-    if (method == "reference") return buildReferenceChain(base, options);
-    throw std::invalid_argument("unknown mip builder '" + std::string(method) + "'");
+MipChain buildChain(const CubeMap& base, Builder builder, const BuildOptions& options) {
+    switch (builder) {
+        case Builder::Box: return buildBoxChain(base, options);
+        case Builder::Paper: return buildPaperChain(base, options);
+        case Builder::Phong: return buildPhongChain(base, options);
+        case Builder::Reference: return buildReferenceChain(base, options);
+    }
+    return buildPhongChain(base, options);
 }
 
 
@@ -146,7 +157,7 @@ namespace {
 std::vector<Rgb> enlargedImage(const CubeMap& c, Face f) {
     const int m = c.size();
     const int big = 3 * m;
-    const detail::FaceFrame& fr = detail::faceFrame(f);
+    const FaceFrame& fr = faceFrame(f);
     const Face opposite = static_cast<Face>(static_cast<int>(f) ^ 1);
     std::vector<Rgb> img(static_cast<std::size_t>(big) * static_cast<std::size_t>(big));
     for (int by = 0; by < big; ++by) {
@@ -173,9 +184,8 @@ std::vector<Rgb> enlargedImage(const CubeMap& c, Face f) {
                     const float delta = std::fabs(tc) - 1.0f;
                     q = (1.0f - delta) * fr.axis + sc * fr.u + side * fr.v;
                 }
-                const FaceCoord fc = directionToFace(q);
-                v = c.at(fc.face, std::clamp(static_cast<int>(fc.s * static_cast<float>(m)), 0, m - 1),
-                         std::clamp(static_cast<int>(fc.t * static_cast<float>(m)), 0, m - 1));
+                const TexelRef t = texelOf(directionToFace(q), m);
+                v = c.at(t.face, t.x, t.y);
             }
             img[static_cast<std::size_t>(by) * big + static_cast<std::size_t>(bx)] = v;
         }
@@ -186,7 +196,7 @@ std::vector<Rgb> enlargedImage(const CubeMap& c, Face f) {
 }  // namespace
 
 MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options) {
-    const Progress progress(options);
+    const BuildProgress progress(options);
     const int n = base.size();
     const int levels = fullChainLevelCount(n);
     MipChain chain;
@@ -215,7 +225,7 @@ namespace {
 // step from the level before.
 template <class FilterLevel>
 MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, FilterLevel&& filterLevel) {
-    const Progress progress(options);
+    const BuildProgress progress(options);
     const int n = base.size();
     const int levels = fullChainLevelCount(n);
     MipChain chain;

@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
@@ -13,43 +14,43 @@ const char* faceName(Face f) {
     return kNames[static_cast<int>(f)];
 }
 
+const FaceFrame& faceFrame(Face f) {
+    // Read off the table in cubemap.h: direction = axis + sc·u + tc·v.
+    static constexpr std::array<FaceFrame, 6> kFrames{{
+        {{0, 0, -1}, {0, -1, 0}, {1, 0, 0}},   // +X: ( 1, -tc, -sc)
+        {{0, 0, 1}, {0, -1, 0}, {-1, 0, 0}},   // -X: (-1, -tc,  sc)
+        {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}},     // +Y: (sc,   1,  tc)
+        {{1, 0, 0}, {0, 0, -1}, {0, -1, 0}},   // -Y: (sc,  -1, -tc)
+        {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}},    // +Z: (sc, -tc,   1)
+        {{-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},  // -Z: (-sc, -tc, -1)
+    }};
+    return kFrames[static_cast<std::size_t>(f)];
+}
+
+glm::vec2 faceCoordOnPlane(Face f, const glm::vec3& r) {
+    const FaceFrame& fr = faceFrame(f);
+    const float ma = glm::dot(r, fr.axis);
+    return {0.5f * (glm::dot(r, fr.u) / ma + 1.0f), 0.5f * (glm::dot(r, fr.v) / ma + 1.0f)};
+}
+
 FaceCoord directionToFace(const glm::vec3& r) {
     const float ax = std::fabs(r.x), ay = std::fabs(r.y), az = std::fabs(r.z);
+    // The major axis picks the face; ties go to x, then y (the GL specification leaves them to
+    // the implementation).
     Face face;
-    float sc, tc, ma;
-    // Ties go to x, then y: the GL specification leaves them to the implementation.
-    if (ax >= ay && ax >= az) {
-        ma = ax;
+    if (ax >= ay && ax >= az)
         face = r.x >= 0.0f ? Face::PX : Face::NX;
-        sc = r.x >= 0.0f ? -r.z : r.z;
-        tc = -r.y;
-    } else if (ay >= az) {
-        ma = ay;
+    else if (ay >= az)
         face = r.y >= 0.0f ? Face::PY : Face::NY;
-        sc = r.x;
-        tc = r.y >= 0.0f ? r.z : -r.z;
-    } else {
-        ma = az;
+    else
         face = r.z >= 0.0f ? Face::PZ : Face::NZ;
-        sc = r.z >= 0.0f ? r.x : -r.x;
-        tc = -r.y;
-    }
-    return {face, 0.5f * (sc / ma + 1.0f), 0.5f * (tc / ma + 1.0f)};
+    const glm::vec2 st = faceCoordOnPlane(face, r);
+    return {face, st.x, st.y};
 }
 
 glm::vec3 faceToDirection(Face face, float s, float t) {
-    const float sc = 2.0f * s - 1.0f;
-    const float tc = 2.0f * t - 1.0f;
-    glm::vec3 d(0.0f);
-    switch (face) {
-        case Face::PX: d = {1.0f, -tc, -sc}; break;
-        case Face::NX: d = {-1.0f, -tc, sc}; break;
-        case Face::PY: d = {sc, 1.0f, tc}; break;
-        case Face::NY: d = {sc, -1.0f, -tc}; break;
-        case Face::PZ: d = {sc, -tc, 1.0f}; break;
-        case Face::NZ: d = {-sc, -tc, -1.0f}; break;
-    }
-    return glm::normalize(d);
+    const FaceFrame& fr = faceFrame(face);
+    return glm::normalize(fr.axis + (2.0f * s - 1.0f) * fr.u + (2.0f * t - 1.0f) * fr.v);
 }
 
 glm::vec3 texelDirection(Face face, int x, int y, int size) {
@@ -81,10 +82,13 @@ CubeMap::CubeMap(int size, Rgb fill) : size_(size) {
 
 TexelRef resolveTexel(Face f, int x, int y, int size) {
     if (x >= 0 && y >= 0 && x < size && y < size) return {f, x, y};
-    const FaceCoord c = directionToFace(texelDirection(f, x, y, size));
-    const int nx = std::clamp(static_cast<int>(std::floor(c.s * static_cast<float>(size))), 0, size - 1);
-    const int ny = std::clamp(static_cast<int>(std::floor(c.t * static_cast<float>(size))), 0, size - 1);
-    return {c.face, nx, ny};
+    return texelOf(directionToFace(texelDirection(f, x, y, size)), size);
+}
+
+TexelRef texelOf(const FaceCoord& c, int size) {
+    const float m = static_cast<float>(size);
+    return {c.face, std::clamp(static_cast<int>(std::floor(c.s * m)), 0, size - 1),
+            std::clamp(static_cast<int>(std::floor(c.t * m)), 0, size - 1)};
 }
 
 void CubeMap::makeSeamless() {

@@ -1,5 +1,6 @@
 #include "lobe_filter.h"
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/parallel.h"
 
 #include <glm/geometric.hpp>
@@ -9,19 +10,6 @@
 #include <cmath>
 
 namespace mipgloss::detail {
-
-const FaceFrame& faceFrame(Face f) {
-    // Read off faceToDirection (cubemap.cpp): direction = axis + sc·u + tc·v.
-    static const std::array<FaceFrame, 6> kFrames{{
-        {{0, 0, -1}, {0, -1, 0}, {1, 0, 0}},    // +X: (1, -tc, -sc)
-        {{0, 0, 1}, {0, -1, 0}, {-1, 0, 0}},    // -X: (-1, -tc, sc)
-        {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}},      // +Y: (sc, 1, tc)
-        {{1, 0, 0}, {0, 0, -1}, {0, -1, 0}},    // -Y: (sc, -1, -tc)
-        {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}},     // +Z: (sc, -tc, 1)
-        {{-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},   // -Z: (-sc, -tc, -1)
-    }};
-    return kFrames[static_cast<std::size_t>(f)];
-}
 
 namespace {
 
@@ -295,7 +283,6 @@ LobeSource baseSource(const CubeMap& base) {
 }
 
 namespace {
-float luminance(const Rgb& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 glm::vec3 normalizedOr(const glm::vec3& v, const glm::vec3& fallback) {
     const float len = glm::length(v);
     return len > 0.0f && std::isfinite(len) ? v / len : fallback;
@@ -348,7 +335,7 @@ LobeSource coarsenSource(const LobeSource& fine) {
                     for (int i = 0; i < 2; ++i) {
                         const std::size_t c = fineIndex(2 * x + i, 2 * y + j);
                         energy += fine.energy[fi][c];
-                        moment += fineIsBase ? luminance(fine.energy[fi][c]) * fine.geoDir[c]
+                        moment += fineIsBase ? static_cast<float>(luminance(fine.energy[fi][c])) * fine.geoDir[c]
                                              : fine.energyMoment[fi][c];
                     }
                 e[k] = energy;

@@ -21,11 +21,6 @@
 
 namespace mipgloss::detail {
 
-// Face frame: direction = normalize(axis + sc·u + tc·v); local coords are (R·u, R·v, R·axis).
-struct FaceFrame {
-    glm::vec3 u, v, axis;
-};
-const FaceFrame& faceFrame(Face f);
 
 // Node grid of a source level: nodes of group×group texels on a face of `size` texels.
 struct NodeGrid {

@@ -64,12 +64,12 @@ void removeQuietly(const fs::path& p) {
 
 }  // namespace
 
-std::string manifestJson(const BakeSummary& summary, const std::string& method, const std::string& source) {
+std::string manifestJson(const BakeSummary& summary, Builder builder, const std::string& source) {
     std::ostringstream o;
     o.precision(10);
     o << "{\n";
     o << "  \"format\": \"mipgloss-bake\",\n";
-    o << "  \"method\": \"" << jsonEscape(method) << "\",\n";
+    o << "  \"builder\": \"" << builderName(builder) << "\",\n";
     o << "  \"source\": \"" << jsonEscape(source) << "\",\n";
     o << "  \"layout\": \"" << layoutName(summary.report.layout) << "\",\n";
     o << "  \"face_size\": " << summary.faceSize << ",\n";
@@ -97,30 +97,25 @@ std::string manifestJson(const BakeSummary& summary, const std::string& method, 
 }
 
 BakeSummary bake(const BakeRequest& request) {
-    if (!isBuilderName(request.method))
-        throw std::invalid_argument("unknown method '" + request.method + "'");
     if (request.outDir.empty()) throw std::invalid_argument("no output directory given");
-    auto report = [&](const std::string& stage, float f) {
-        if (request.progress) request.progress(stage, f);
-    };
+    auto report = [&](const std::string& stage, float f) { reportProgress(request.progress, stage, f); };
 
     BakeSummary summary;
     const auto t0 = std::chrono::steady_clock::now();
     ImportedEnvironment env =
         request.environment.empty()
             ? loadDefaultEnvironment(request.import.faceSize > 0 ? request.import.faceSize : 128)
-            : loadEnvironment(request.environment, request.import, [&](float f) { report("import", f); });
+            : loadEnvironment(request.environment, request.import, request.progress);
     summary.importSeconds = secondsSince(t0);
     summary.report = env.report;
     summary.faceSize = env.cube.size();
 
     const auto t1 = std::chrono::steady_clock::now();
     BuildOptions options;
-    options.progress = [&](float f) {
-        report("build " + request.method, f);
-        return true;
+    options.progress = [&](const std::string& stage, float f) {
+        return !request.progress || request.progress(stage + " " + builderName(request.builder), f);
     };
-    const MipChain chain = buildChain(env.cube, request.method, options);
+    const MipChain chain = buildChain(env.cube, request.builder, options);
     CubeMap irradiance;
     if (request.irradiance) {
         report("irradiance", 0.0f);
@@ -152,7 +147,7 @@ BakeSummary bake(const BakeRequest& request) {
         const fs::path manifest = staging / "manifest.json";
         FILE* f = std::fopen(manifest.c_str(), "wb");
         if (!f) throw EnvError(manifest, "cannot be created");
-        const std::string text = manifestJson(summary, request.method, source);
+        const std::string text = manifestJson(summary, request.builder, source);
         const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
         if (std::fclose(f) != 0 || !ok) throw EnvError(manifest, "could not be written completely");
 

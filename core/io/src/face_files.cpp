@@ -123,7 +123,7 @@ FaceSet lookUpFaces(const std::map<std::string, std::vector<fs::path>>& byStem, 
 }
 
 CubeMap cubeFromFaceFiles(const std::array<fs::path, 6>& files, Handedness handedness,
-                          ImportReport& report, const ProgressFn& progress) {
+                          ImportReport& report, const Progress& progress) {
     std::array<Image, 6> images;
     for (std::size_t i = 0; i < 6; ++i) {
         images[i] = readImageFile(files[i], report);
@@ -136,7 +136,7 @@ CubeMap cubeFromFaceFiles(const std::array<fs::path, 6>& files, Handedness hande
                                          files[0].string() + " is " +
                                          sizeText(images[0].width, images[0].height) +
                                          "; all six faces must have the same size");
-        if (progress) progress(0.9f * static_cast<float>(i + 1) / 6.0f);
+        reportProgress(progress, "import", 0.9f * static_cast<float>(i + 1) / 6.0f);
     }
     const int n = images[0].width;
     CubeMap cube(n);

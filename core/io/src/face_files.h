@@ -43,6 +43,6 @@ FaceSet lookUpFaces(const std::map<std::string, std::vector<std::filesystem::pat
 // Reads six square face images of one size into a cube (right-handed: as they are; left-handed:
 // mirrored as import.h describes). Throws EnvError naming the offending file.
 CubeMap cubeFromFaceFiles(const std::array<std::filesystem::path, 6>& files, Handedness handedness,
-                          ImportReport& report, const ProgressFn& progress);
+                          ImportReport& report, const Progress& progress);
 
 }  // namespace mipgloss::io_detail

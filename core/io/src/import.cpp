@@ -21,15 +21,15 @@ using namespace io_detail;
 
 namespace {
 
-ImportedEnvironment finish(CubeMap cube, ImportReport report, int faceSize, const ProgressFn& progress) {
+ImportedEnvironment finish(CubeMap cube, ImportReport report, int faceSize, const Progress& progress) {
     if (faceSize > 0 && faceSize != cube.size()) cube = resampleCube(cube, faceSize);
     cube.makeSeamless();
-    if (progress) progress(1.0f);
+    reportProgress(progress, "import", 1.0f);
     return {std::move(cube), std::move(report)};
 }
 
 ImportedEnvironment fromSingleImage(const Image& img, const fs::path& file, const ImportOptions& options,
-                                    ImportReport report, const ProgressFn& progress) {
+                                    ImportReport report, const Progress& progress) {
     EnvLayout layout = options.layout;
     if (layout == EnvLayout::Auto) layout = detectLayout(img, file);
     report.layout = layout;
@@ -39,19 +39,19 @@ ImportedEnvironment fromSingleImage(const Image& img, const fs::path& file, cons
         return finish(std::move(cube), std::move(report), 0, progress);
     }
     CubeMap cube = cubeFromLayout(img, layout, file);
-    if (progress) progress(0.5f);
+    reportProgress(progress, "import", 0.5f);
     return finish(std::move(cube), std::move(report), options.faceSize, progress);
 }
 
 ImportedEnvironment fromFaces(const std::array<fs::path, 6>& files, const ImportOptions& options,
-                              ImportReport report, const ProgressFn& progress) {
+                              ImportReport report, const Progress& progress) {
     report.layout = EnvLayout::Faces;
     CubeMap cube = cubeFromFaceFiles(files, options.handedness, report, progress);
     return finish(std::move(cube), std::move(report), options.faceSize, progress);
 }
 
 ImportedEnvironment loadDirectory(const fs::path& dir, const ImportOptions& options,
-                                  const ProgressFn& progress) {
+                                  const Progress& progress) {
     if (options.layout != EnvLayout::Auto && options.layout != EnvLayout::Faces)
         throw EnvError(dir, std::string("is a folder; layout ") + layoutName(options.layout) +
                                 " needs a single image file");
@@ -92,10 +92,10 @@ ImportedEnvironment loadDirectory(const fs::path& dir, const ImportOptions& opti
 // ---------------------------------------------------------------------------------------------
 
 ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& options,
-                                    const ProgressFn& progress) {
+                                    const Progress& progress) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw EnvError(path, "file not found");
-    if (progress) progress(0.0f);
+    reportProgress(progress, "import", 0.0f);
     if (fs::is_directory(path, ec)) return loadDirectory(path, options, progress);
 
     // A member of a face-naming family with siblings next to it is one face of six.
@@ -122,16 +122,16 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
 
     ImportReport report;
     const Image img = readImageFile(path, report);
-    if (progress) progress(0.3f);
+    reportProgress(progress, "import", 0.3f);
     return fromSingleImage(img, path, options, std::move(report), progress);
 }
 
 ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> bytes, const std::string& name,
-                                              const ImportOptions& options, const ProgressFn& progress) {
+                                              const ImportOptions& options, const Progress& progress) {
     if (options.layout == EnvLayout::Faces) throw EnvError(name, "six face files cannot come from memory");
     ImportReport report;
     const Image img = readImageMemory(bytes, name, report);
-    if (progress) progress(0.3f);
+    reportProgress(progress, "import", 0.3f);
     return fromSingleImage(img, name, options, std::move(report), progress);
 }
 }  // namespace mipgloss

@@ -220,19 +220,15 @@ void convertTexel(const LatLongSampler& ll, CubeMap& cube, Face f, int x, int y)
 
     glm::dvec3 sum(0.0);
     double wsum = 0.0;
-    const float fn = static_cast<float>(n);
     for (int b = bLo; b <= bHi; ++b) {
         const LatLongSampler::Row& r = ll.rows[static_cast<std::size_t>(b)];
         for (int a = aLo; a <= aHi; ++a) {
             const int ai = a < 0 ? a + ll.nu : (a >= ll.nu ? a - ll.nu : a);
             const LatLongSampler::Column& c = ll.cols[static_cast<std::size_t>(ai)];
             const glm::vec3 dir(r.sinTheta * c.cosPhi, r.cosTheta, r.sinTheta * c.sinPhi);
-            const FaceCoord fc = directionToFace(dir);
-            if (fc.face != f) continue;
-            // The same rule as resolveTexel: each direction belongs to exactly one texel.
-            const int tx = std::clamp(static_cast<int>(std::floor(fc.s * fn)), 0, n - 1);
-            const int ty = std::clamp(static_cast<int>(std::floor(fc.t * fn)), 0, n - 1);
-            if (tx != x || ty != y) continue;
+            // texelOf: each direction belongs to exactly one texel.
+            const TexelRef t = texelOf(directionToFace(dir), n);
+            if (t.face != f || t.x != x || t.y != y) continue;
             sum += r.weight * glm::dvec3(ll.value(c, r));
             wsum += r.weight;
         }
@@ -317,10 +313,9 @@ void splatExcess(const std::vector<BrightSplit::Pixel>& pixels, int width, int h
                 for (int a = 0; a < su; ++a) {
                     const double phi = 2.0 * kPi * ((p.i + (a + 0.5) / su) / width - 0.5);
                     const glm::vec3 dir(sphericalDirection(theta, phi));
-                    const FaceCoord fc = directionToFace(dir);
-                    const int tx = std::clamp(static_cast<int>(std::floor(fc.s * static_cast<float>(n))), 0, n - 1);
-                    const int ty = std::clamp(static_cast<int>(std::floor(fc.t * static_cast<float>(n))), 0, n - 1);
-                    const std::uint64_t key = (static_cast<std::uint64_t>(fc.face) * static_cast<std::uint64_t>(n) +
+                    const TexelRef t = texelOf(directionToFace(dir), n);
+                    const int tx = t.x, ty = t.y;
+                    const std::uint64_t key = (static_cast<std::uint64_t>(t.face) * static_cast<std::uint64_t>(n) +
                                                static_cast<std::uint64_t>(ty)) * static_cast<std::uint64_t>(n) +
                                               static_cast<std::uint64_t>(tx);
                     if (key != runKey) {
@@ -346,7 +341,7 @@ void splatExcess(const std::vector<BrightSplit::Pixel>& pixels, int width, int h
 
 }  // namespace
 
-CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress, float p0, float p1) {
+CubeMap latLongToCube(const Image& img, int faceSize, const Progress& progress, float p0, float p1) {
     const BrightSplit split = splitBright(img);
     const LatLongSampler ll(split.clamped, faceSize);
     CubeMap cube(faceSize);
@@ -360,7 +355,7 @@ CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress
             const int y = row % faceSize;
             for (int x = 0; x < faceSize; ++x) convertTexel(ll, cube, f, x, y);
         });
-        if (progress) progress(p0 + (p1 - p0) * static_cast<float>(c + 1) / static_cast<float>(chunks));
+        reportProgress(progress, "import", p0 + (p1 - p0) * static_cast<float>(c + 1) / static_cast<float>(chunks));
     }
     splatExcess(split.excess, img.width, img.height, cube);
     return cube;

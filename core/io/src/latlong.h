@@ -7,6 +7,6 @@
 namespace mipgloss::io_detail {
 
 // Converts at face size `faceSize`, reporting progress from p0 to p1.
-CubeMap latLongToCube(const Image& img, int faceSize, const ProgressFn& progress, float p0, float p1);
+CubeMap latLongToCube(const Image& img, int faceSize, const Progress& progress, float p0, float p1);
 
 }  // namespace mipgloss::io_detail

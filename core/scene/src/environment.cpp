@@ -14,10 +14,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool report(const StageProgress& progress, const std::string& stage, float fraction) {
-    return !progress || progress(stage, fraction);
-}
-
 }  // namespace
 
 bool PreparedEnvironment::sameImport(const EnvironmentSettings& other) const {
@@ -27,7 +23,7 @@ bool PreparedEnvironment::sameImport(const EnvironmentSettings& other) const {
 
 bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const {
     return sameImport(other) && chain && settings.builder == other.builder &&
-           filteredThrough >= std::min(needs.lastFilteredLevel, levelCount() - 1) &&
+           lastFilteredLevel >= std::min(needs.lastFilteredLevel, levelCount() - 1) &&
            (!needs.irradiance || irradiance);
 }
 
@@ -37,7 +33,7 @@ ChainNeeds needsFor(const Scene& scene, int baseFaceSize) {
 
 PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
                                        const PreparedEnvironment* previous,
-                                       const StageProgress& progress) {
+                                       const Progress& progress) {
     PreparedEnvironment out;
     out.settings = settings;
 
@@ -48,7 +44,7 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         out.importSeconds = previous->importSeconds;
     } else {
         const auto start = std::chrono::steady_clock::now();
-        if (!report(progress, "import", 0.0f)) throw BuildCancelled{};
+        reportProgress(progress, "import", 0.0f);
         ImportedEnvironment imported;
         if (settings.source == kBuiltinEnvironment) {
             imported = loadDefaultEnvironment(settings.faceSize);
@@ -57,9 +53,7 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
             options.layout = settings.layout;
             options.handedness = settings.handedness;
             options.faceSize = settings.faceSize;
-            imported = loadEnvironment(settings.source, options, [&](float f) {
-                if (!report(progress, "import", f)) throw BuildCancelled{};
-            });
+            imported = loadEnvironment(settings.source, options, progress);
         }
         out.base = std::make_shared<const CubeMap>(std::move(imported.cube));
         out.report = std::move(imported.report);
@@ -74,18 +68,18 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
     const int needed = std::clamp(needs.lastFilteredLevel, 0, levels - 1);
     const bool sameBuilderChain = previous && previous->chain && previous->sameImport(settings) &&
                                   previous->settings.builder == settings.builder;
-    if (sameBuilderChain && previous->filteredThrough >= needed) {
+    if (sameBuilderChain && previous->lastFilteredLevel >= needed) {
         out.chain = previous->chain;
-        out.filteredThrough = previous->filteredThrough;
+        out.lastFilteredLevel = previous->lastFilteredLevel;
         out.buildSeconds = previous->buildSeconds;
     } else {
-        const int through = sameBuilderChain ? std::max(needed, previous->filteredThrough) : needed;
+        const int through = sameBuilderChain ? std::max(needed, previous->lastFilteredLevel) : needed;
         const auto start = std::chrono::steady_clock::now();
         BuildOptions options;
         options.lastFilteredLevel = through;
-        options.progress = [&](float f) { return report(progress, "build", f); };
+        options.progress = progress;
         out.chain = std::make_shared<const MipChain>(buildChain(*out.base, settings.builder, options));
-        out.filteredThrough = through;
+        out.lastFilteredLevel = through;
         out.buildSeconds = secondsSince(start);
     }
 
@@ -94,12 +88,12 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         out.irradiance = previous->irradiance;
         out.irradianceSeconds = previous->irradianceSeconds;
     } else if (needs.irradiance) {
-        if (!report(progress, "irradiance", 0.0f)) throw BuildCancelled{};
+        reportProgress(progress, "irradiance", 0.0f);
         const auto start = std::chrono::steady_clock::now();
         out.irradiance = std::make_shared<const CubeMap>(computeIrradiance(*out.base));
         out.irradianceSeconds = secondsSince(start);
     }
-    report(progress, "done", 1.0f);
+    reportProgress(progress, "done", 1.0f);
     return out;
 }
 

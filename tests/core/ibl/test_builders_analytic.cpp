@@ -51,9 +51,9 @@ TEST(Builders, ConstantEnvironmentStaysConstantAtEveryLevel) {
     // Every builder normalizes its weights, so a constant maps to itself up to float rounding.
     for (int size : {32, 24}) {
         const CubeMap base(size, Rgb(0.75f));
-        for (const std::string& method : builderNames()) {
+        for (const Builder method : kAllBuilders) {
             const MipChain chain = buildChain(base, method);
-            ASSERT_EQ(chain.levelCount(), fullChainLevelCount(size)) << method;
+            ASSERT_EQ(chain.levelCount(), fullChainLevelCount(size)) << builderName(method);
             for (int k = 0; k < chain.levelCount(); ++k) {
                 const CubeMap& level = chain.levels[static_cast<std::size_t>(k)];
                 ASSERT_EQ(level.size(), levelSize(size, k));
@@ -61,7 +61,7 @@ TEST(Builders, ConstantEnvironmentStaysConstantAtEveryLevel) {
                     for (int y = -1; y <= level.size(); ++y)  // borders included
                         for (int x = -1; x <= level.size(); ++x)
                             ASSERT_NEAR(level.at(f, x, y).g, 0.75f, 2e-6f)
-                                << method << " size " << size << " level " << k << " " << faceName(f) << " " << x << "," << y;
+                                << builderName(method) << " size " << size << " level " << k << " " << faceName(f) << " " << x << "," << y;
             }
         }
     }
@@ -79,15 +79,15 @@ TEST(Builders, LinearEnvironmentGetsTheFunkHeckeGainAtEveryLevel) {
         return Rgb(static_cast<float>(env.c + glm::dot(env.a, glm::dvec3(d))));
     });
     const double tolerance = 0.005 * glm::length(env.a);
-    for (const char* method : {"phong", "reference"}) {
+    for (const Builder method : {Builder::Phong, Builder::Reference}) {
         const MipChain chain = buildChain(base, method);
         for (int k = 1; k < chain.levelCount(); ++k) {
             const double n = lambdaToExponent(k, kSize);
             const double err = maxDeviation(chain.levels[static_cast<std::size_t>(k)], [&](const glm::dvec3& r) {
                 return env.c + gain1(n) * glm::dot(env.a, r);
             });
-            std::printf("[linear] %-9s level %d n=%8.1f max error %.2e (tolerance %.2e)\n", method, k, n, err, tolerance);
-            EXPECT_LT(err, tolerance) << method << " level " << k;
+            std::printf("[linear] %-9s level %d n=%8.1f max error %.2e (tolerance %.2e)\n", builderName(method), k, n, err, tolerance);
+            EXPECT_LT(err, tolerance) << builderName(method) << " level " << k;
         }
     }
 }
@@ -101,15 +101,15 @@ TEST(Builders, SphericalHarmonicEnvironmentFollowsFunkHecke) {
         return Rgb(static_cast<float>(env.value(glm::dvec3(d))));
     });
     const double tolerance = 0.005 * (glm::length(env.a) + env.b2 + env.b3);
-    for (const char* method : {"phong", "reference"}) {
+    for (const Builder method : {Builder::Phong, Builder::Reference}) {
         const MipChain chain = buildChain(base, method);
         for (int k = 1; k < chain.levelCount(); ++k) {
             const double n = lambdaToExponent(k, kSize);
             const double err = maxDeviation(chain.levels[static_cast<std::size_t>(k)], [&](const glm::dvec3& r) {
                 return env.value(r, gain1(n), gain2(n), gain3(n));
             });
-            std::printf("[sh] %-9s level %d n=%8.1f max error %.2e (tolerance %.2e)\n", method, k, n, err, tolerance);
-            EXPECT_LT(err, tolerance) << method << " level " << k;
+            std::printf("[sh] %-9s level %d n=%8.1f max error %.2e (tolerance %.2e)\n", builderName(method), k, n, err, tolerance);
+            EXPECT_LT(err, tolerance) << builderName(method) << " level " << k;
         }
     }
 }
@@ -129,12 +129,12 @@ TEST(Builders, EnergyOfEveryLevelEqualsTheBase) {
     });
     const double baseMean = base.weightedMean().x;
     EXPECT_NEAR(baseMean, env.c, 1e-5);
-    for (const char* method : {"phong", "reference"}) {
+    for (const Builder method : {Builder::Phong, Builder::Reference}) {
         const MipChain chain = buildChain(base, method);
         for (int k = 1; k < chain.levelCount(); ++k) {
             const double mean = chain.levels[static_cast<std::size_t>(k)].weightedMean().x;
-            std::printf("[energy] %-9s level %d mean %.7f base %.7f\n", method, k, mean, baseMean);
-            EXPECT_NEAR(mean / baseMean, 1.0, 1e-3) << method << " level " << k;
+            std::printf("[energy] %-9s level %d mean %.7f base %.7f\n", builderName(method), k, mean, baseMean);
+            EXPECT_NEAR(mean / baseMean, 1.0, 1e-3) << builderName(method) << " level " << k;
         }
     }
 }

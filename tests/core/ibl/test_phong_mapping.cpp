@@ -73,3 +73,17 @@ TEST(PhongMapping, FittedExponentOfEachBuiltLevelMatchesTheDeclaredOne) {
         EXPECT_NEAR(fit / declared, 1.0, 0.10) << "level " << k;
     }
 }
+
+TEST(BuilderNames, EveryBuilderRoundTripsAndUnknownNamesAreRefused) {
+    for (const Builder b : kAllBuilders) {
+        Builder back = b == Builder::Box ? Builder::Phong : Builder::Box;
+        ASSERT_TRUE(parseBuilder(builderName(b), back)) << builderName(b);
+        EXPECT_EQ(back, b);
+    }
+    EXPECT_EQ(kAllBuilders.front(), kDefaultBuilder) << "the default is listed first";
+    Builder untouched = Builder::Paper;
+    EXPECT_FALSE(parseBuilder("nonsense", untouched));
+    EXPECT_FALSE(parseBuilder("Phong", untouched)) << "names are exact";
+    EXPECT_FALSE(parseBuilder("", untouched));
+    EXPECT_EQ(untouched, Builder::Paper) << "a refused name leaves the value alone";
+}

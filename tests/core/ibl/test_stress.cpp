@@ -30,11 +30,11 @@ void expectFiniteNonNegative(const CubeMap& c, const std::string& what) {
 TEST(Stress, ExtremeConstantsSurviveEveryBuilder) {
     for (float value : {1e-30f, 1e30f, 65504.0f, 0.0f}) {
         const CubeMap base(16, Rgb(value));
-        for (const std::string& method : builderNames()) {
+        for (const Builder method : kAllBuilders) {
             const MipChain chain = buildChain(base, method);
             for (const CubeMap& level : chain.levels) {
-                expectFiniteNonNegative(level, method);
-                for (Face f : kAllFaces) ASSERT_NEAR(level.at(f, 0, 0).r, value, 1e-5f * value) << method << " " << value;
+                expectFiniteNonNegative(level, builderName(method));
+                for (Face f : kAllFaces) ASSERT_NEAR(level.at(f, 0, 0).r, value, 1e-5f * value) << builderName(method) << " " << value;
             }
         }
     }
@@ -55,9 +55,9 @@ TEST(Stress, MixedMagnitudesFrom1em30To1e30StayFiniteAndKeepEnergy) {
             for (int x = 0; x < 32; ++x) base.at(f, x, y) = Rgb(std::pow(10.0f, exponent(rng)));
     base.makeSeamless();
     const MipChain phong = buildPhongChain(base), reference = buildReferenceChain(base);
-    for (const std::string& method : builderNames()) {
+    for (const Builder method : kAllBuilders) {
         const MipChain chain = buildChain(base, method);
-        for (const CubeMap& level : chain.levels) expectFiniteNonNegative(level, method);
+        for (const CubeMap& level : chain.levels) expectFiniteNonNegative(level, builderName(method));
     }
     for (int k = 1; k < phong.levelCount(); ++k) {
         const double a = phong.levels[static_cast<std::size_t>(k)].weightedMean().x;
@@ -72,13 +72,13 @@ TEST(Stress, TinyAndNonPowerOfTwoFaces) {
     // from the base directly (the pyramid shortcut needs exact 2×2 nesting) and stay exact.
     for (int size : {1, 2, 3, 6, 12}) {
         const CubeMap base = test::cubeFromFunction(size, [](const glm::vec3& d) { return Rgb(1.0f + 0.5f * d.x, 1.0f, 1.0f); });
-        for (const std::string& method : builderNames()) {
+        for (const Builder method : kAllBuilders) {
             const MipChain chain = buildChain(base, method);
-            ASSERT_EQ(chain.levelCount(), fullChainLevelCount(size)) << method << " " << size;
+            ASSERT_EQ(chain.levelCount(), fullChainLevelCount(size)) << builderName(method) << " " << size;
             ASSERT_EQ(chain.levels.back().size(), 1);
-            for (const CubeMap& level : chain.levels) expectFiniteNonNegative(level, method);
+            for (const CubeMap& level : chain.levels) expectFiniteNonNegative(level, builderName(method));
             // Energy: the base mean is 1 exactly (a linear field integrates to its constant).
-            for (const CubeMap& level : chain.levels) EXPECT_NEAR(level.weightedMean().x, 1.0, 0.02) << method << " " << size;
+            for (const CubeMap& level : chain.levels) EXPECT_NEAR(level.weightedMean().x, 1.0, 0.02) << builderName(method) << " " << size;
         }
         const CubeMap irr = computeIrradiance(base);
         expectFiniteNonNegative(irr, "irradiance");

@@ -755,8 +755,22 @@ TEST(EnvProgress, ReportsMonotonicFractionsEndingAtOne) {
     TempDir dir;
     writeFloatRgb(dir / "const.exr", 64, 32, std::vector<Rgb>(64 * 32, Rgb(1.0f)));
     std::vector<float> seen;
-    loadEnvironment(dir / "const.exr", {}, [&](float f) { seen.push_back(f); });
+    loadEnvironment(dir / "const.exr", {}, [&](const std::string& stage, float f) {
+        EXPECT_EQ(stage, "import");
+        seen.push_back(f);
+        return true;
+    });
     ASSERT_FALSE(seen.empty());
     EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
     EXPECT_FLOAT_EQ(seen.back(), 1.0f);
+}
+
+TEST(EnvProgress, ImportStopsWithCancelledWhenProgressSaysSo) {
+    TempDir dir;
+    writeFloatRgb(dir / "const.exr", 64, 32, std::vector<Rgb>(64 * 32, Rgb(1.0f)));
+    int calls = 0;
+    EXPECT_THROW(loadEnvironment(dir / "const.exr", {},
+                                 [&](const std::string&, float f) { return ++calls < 3 && f < 1.0f; }),
+                 Cancelled);
+    EXPECT_EQ(calls, 3) << "stops at the first report that says so";
 }

@@ -35,14 +35,8 @@ namespace mipgloss::ui {
 
 class SceneDocument;
 
-// The exact sRGB transfer functions (IEC 61966-2-1), the same the environment import decodes 8-bit
-// images with (envio.h): QColor values are sRGB-encoded, materials hold linear RGB.
-//   linear = c / 12.92                       for c <= 0.04045
-//            ((c + 0.055) / 1.055)^2.4       otherwise
-//   c      = 12.92 linear                    for linear <= 0.0031308
-//            1.055 linear^(1/2.4) − 0.055    otherwise
-double srgbToLinear(double encoded);
-double linearToSrgb(double linear);
+// QColor values are sRGB-encoded, materials hold linear RGB: the conversion is colour.h's exact
+// sRGB transfer functions, the same the environment import decodes 8-bit images with.
 // Linear RGB -> sRGB QColor (components clamped to [0, 1]) and back.
 QColor colorFromLinear(const Rgb& linear);
 Rgb linearFromColor(const QColor& color);

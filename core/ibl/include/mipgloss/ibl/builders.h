@@ -1,4 +1,4 @@
-// Mip-chain builders, selectable by name. Every builder takes a base cube (level 0) and returns a
+// Mip-chain builders, selectable by enum (and by name in files and on the command line). Every builder takes a base cube (level 0) and returns a
 // full chain down to 1×1 with seamless (or, for `paper`, its own) borders filled.
 //
 //   box        per-face 2×2 box filter: what glGenerateMipmap does; the baseline that seams.
@@ -15,7 +15,9 @@
 #pragma once
 
 #include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/progress.h"
 
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -23,26 +25,25 @@
 
 namespace mipgloss {
 
-inline constexpr std::string_view kDefaultBuilder = "phong";
-
-// Names of all builders, the default first.
-std::vector<std::string> builderNames();
-bool isBuilderName(std::string_view name);
+enum class Builder { Phong, Box, Paper, Reference };
+inline constexpr Builder kDefaultBuilder = Builder::Phong;
+// Every builder, the default first.
+inline constexpr std::array<Builder, 4> kAllBuilders{Builder::Phong, Builder::Box, Builder::Paper,
+                                                     Builder::Reference};
+const char* builderName(Builder builder);  // "phong", "box", "paper", "reference"
+bool parseBuilder(std::string_view text, Builder& out);
 
 struct BuildOptions {
     // Levels above this index are filled by a cheap box filter from the level before instead of
     // the builder's own filter ("skip what the scene doesn't need"); -1 builds every level.
     int lastFilteredLevel = -1;
-    // Called with the fraction done, from the calling thread; return false to cancel.
-    std::function<bool(float)> progress;
+    // Stage "build"; returning false stops the build with Cancelled (progress.h).
+    Progress progress;
 };
 
-// Thrown when BuildOptions::progress asks to stop.
-struct BuildCancelled {};
-
 // Builds the chain. `base` must be non-empty with finite, non-negative texels (import ensures it).
-// Throws std::invalid_argument for an unknown name.
-MipChain buildChain(const CubeMap& base, std::string_view method, const BuildOptions& options = {});
+// Throws Cancelled when options.progress asks to stop.
+MipChain buildChain(const CubeMap& base, Builder builder, const BuildOptions& options = {});
 
 // The individual builders.
 MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options = {});

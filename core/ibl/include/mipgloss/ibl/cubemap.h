@@ -23,6 +23,7 @@
 // needs a different border (the paper's own construction) writes it directly.
 #pragma once
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -49,8 +50,23 @@ struct FaceCoord {
     float t;
 };
 
+// The table above as a frame per face: a point (s, t) of face f looks along
+//     axis + (2s - 1)·u + (2t - 1)·v,
+// so sc = r·u, tc = r·v and ma = r·axis for a direction r on that face. Every orientation
+// question in mipgloss (both functions below, the lobe filter's face-local frames, the paper's
+// unfolded neighbours, the tests' footprint LOD) reads this one table.
+struct FaceFrame {
+    glm::vec3 u, v, axis;
+};
+const FaceFrame& faceFrame(Face f);
+
 // Direction (need not be normalized, must be non-zero) -> face and (s, t), per the table above.
 FaceCoord directionToFace(const glm::vec3& dir);
+
+// (s, t) of the point where the line along `dir` meets face f's plane (dir·axis > 0). Outside
+// [0, 1] when dir is on another face: how GL differentiates face coordinates, and how borders
+// find their neighbours.
+glm::vec2 faceCoordOnPlane(Face f, const glm::vec3& dir);
 
 // Face and (s, t) -> unit direction. s and t may lie outside [0, 1]: the point is then on the
 // face's plane extended beyond the cube, which is how borders find their neighbours.
@@ -113,6 +129,11 @@ struct TexelRef {
     int y;
 };
 TexelRef resolveTexel(Face f, int x, int y, int size);
+
+// The texel of a size-M face that holds the point: floor(s·M), floor(t·M), clamped to the face so
+// that s or t = 1 (a point on the far edge) stays on it. The one rule by which a direction belongs
+// to exactly one texel.
+TexelRef texelOf(const FaceCoord& c, int size);
 
 // A full mip chain, level 0 the base, down to 1×1. Level k has size max(1, floor(N / 2^k)), as in
 // OpenGL; a non-power-of-two base keeps that rule.

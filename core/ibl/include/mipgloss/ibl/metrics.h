@@ -1,6 +1,7 @@
 // Error and seam metrics, all on texel centres with exact solid-angle weights.
 #pragma once
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/cubemap.h"
 
 namespace mipgloss {
@@ -44,8 +45,5 @@ SeamStats seamStats(const CubeMap& level);
 // `level.size()`, best matches `level` in relative RMS (golden-section search on log n within
 // [guess/16, guess·16]).
 double fitExponent(const CubeMap& level, const CubeMap& base, double guess);
-
-// Luminance (Rec. 709).
-inline double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 }  // namespace mipgloss

@@ -4,6 +4,7 @@
 // a partial directory where a good one was.
 #pragma once
 
+#include "mipgloss/ibl/builders.h"
 #include "mipgloss/io/import.h"
 
 #include <filesystem>
@@ -15,12 +16,12 @@ namespace mipgloss {
 
 struct BakeRequest {
     std::filesystem::path environment;  // empty: the embedded default environment
-    std::string method = "phong";
+    Builder builder = kDefaultBuilder;
     ImportOptions import;               // import.faceSize is --size
     bool irradiance = false;
     std::filesystem::path outDir;
-    // Progress: a stage name and the fraction of that stage done.
-    std::function<void(const std::string& stage, float fraction)> progress;
+    // Stages "import", "build <builder>", "irradiance", "write"; false cancels (Cancelled).
+    Progress progress;
 };
 
 struct BakedLevel {
@@ -41,11 +42,11 @@ struct BakeSummary {
 };
 
 // Throws EnvError (bad input or unwritable output, naming the file) or std::invalid_argument
-// (unknown method). Never leaves a partial outDir.
+// (no output folder). Never leaves a partial outDir.
 BakeSummary bake(const BakeRequest& request);
 
 // The manifest.json text for a bake (exposed for tests).
-std::string manifestJson(const BakeSummary& summary, const std::string& method,
+std::string manifestJson(const BakeSummary& summary, Builder builder,
                          const std::string& source);
 
 }  // namespace mipgloss

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/progress.h"
 #include "mipgloss/io/file_error.h"
 
 #include <cstddef>
@@ -92,19 +93,18 @@ struct ImportedEnvironment {
     ImportReport report;
 };
 
-using ProgressFn = std::function<void(float fraction)>;
 
 // Loads an environment: a single image (cross, strip or lat-long), a directory holding six face
 // files, or one face file of a family (its five siblings are found by name). Throws EnvError.
 ImportedEnvironment loadEnvironment(const std::filesystem::path& path,
                                     const ImportOptions& options = {},
-                                    const ProgressFn& progress = {});
+                                    const Progress& progress = {});
 
 // Loads a single image (lat-long, cross or strip) from bytes in memory, e.g. an embedded resource.
 // `name` stands for the file in messages, and its extension tells OpenImageIO the format.
 ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> bytes,
                                               const std::string& name,
                                               const ImportOptions& options = {},
-                                              const ProgressFn& progress = {});
+                                              const Progress& progress = {});
 
 }  // namespace mipgloss

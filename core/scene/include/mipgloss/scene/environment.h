@@ -19,9 +19,9 @@ struct PreparedEnvironment {
     std::shared_ptr<const CubeMap> base;
     ImportReport report;
     std::shared_ptr<const MipChain> chain;
-    // Levels 0..filteredThrough carry the builder's filter; deeper ones the box filter (see
+    // Levels 0..lastFilteredLevel carry the builder's filter; deeper ones the box filter (see
     // ChainNeeds in scene.h).
-    int filteredThrough = -1;
+    int lastFilteredLevel = -1;
     std::shared_ptr<const CubeMap> irradiance;  // null until some object needs it
     double importSeconds = 0.0, buildSeconds = 0.0, irradianceSeconds = 0.0;
 
@@ -32,17 +32,15 @@ struct PreparedEnvironment {
     bool satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const;
 };
 
-// Stage name and fraction done; return false to cancel (BuildCancelled is thrown).
-using StageProgress = std::function<bool(const std::string& stage, float fraction)>;
 
 // Imports (the embedded default when settings.source is kBuiltinEnvironment) and builds what
 // `needs` asks for. Reuses `previous`'s import, chain or irradiance where they still fit, so a
 // change of builder does not re-read the file and a new λ beyond the filtered levels rebuilds
 // only the chain. Throws EnvError (bad file), std::invalid_argument (unknown builder),
-// BuildCancelled.
+// Cancelled.
 PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
                                        const PreparedEnvironment* previous = nullptr,
-                                       const StageProgress& progress = {});
+                                       const Progress& progress = {});
 
 // The scene's needs translated for an environment whose chain has `levelCount` levels, rounded
 // up so that small λ moves do not trigger builds: the filtered range only grows in whole levels

@@ -5,6 +5,7 @@
 // (GL_TEXTURE_MIN_LOD) and the lookup direction, the reflection vector or the surface normal.
 #pragma once
 
+#include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/io/import.h"
 #include "mipgloss/scene/mesh.h"
@@ -71,7 +72,7 @@ struct EnvironmentSettings {
     EnvLayout layout = EnvLayout::Auto;
     Handedness handedness = Handedness::Right;
     int faceSize = 128;                        // the base level's face size after import
-    std::string builder = "phong";             // builders.h
+    Builder builder = kDefaultBuilder;
     float rotationDegrees = 0.0f;              // turns the environment about +Y
     bool operator==(const EnvironmentSettings&) const = default;
 };
