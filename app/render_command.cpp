@@ -2,6 +2,7 @@
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/framing.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/scene.h"
@@ -217,7 +218,7 @@ int runRender(Args args, const char* argv0) {
         for (const std::string& w : environment->report.warnings)
             std::cerr << "mipgloss: warning: " << w << '\n';
 
-    OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
     if (yaw || pitch) {
         if (yaw) camera.yawDegrees = *yaw;
         if (pitch) camera.pitchDegrees = *pitch;
@@ -259,7 +260,7 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     scene.objects.push_back(object);
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-    OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
     start = std::chrono::steady_clock::now();
     renderer.render(scene, camera, environment, width, height);
     renderer.finish();
@@ -325,7 +326,7 @@ int runRenderBench(Args args, const char* argv0) {
     }
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, ChainNeeds{7, false}));
-    const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    const OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
     auto timeFrames = [&](Scene& s) {
         renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
         renderer.finish();

@@ -6,6 +6,7 @@
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/framing.h"
 #include "mipgloss/io/import.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/phong.h"
@@ -54,7 +55,7 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
     // Twice the command line's default size, so the pixel footprint (mipmapping) blurs the mirror
     // less than λ does.
     const int w = 2048, h = 768;
-    const OrbitCamera camera = ui::framingCamera(scene, static_cast<float>(w) / static_cast<float>(h));
+    const OrbitCamera camera = framingCamera(scene, static_cast<float>(w) / static_cast<float>(h));
     const QImage picture = renderer->render(scene, camera, env, w, h);
     picture.save(QString::fromStdString((test::outputDir() / "figure1.png").string()));
     int rw = 0, rh = 0;

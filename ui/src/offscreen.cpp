@@ -77,10 +77,4 @@ void OffscreenRenderer::finish() {
     if (impl_->ready && impl_->context.makeCurrent(&impl_->surface)) impl_->context.functions()->glFinish();
 }
 
-OrbitCamera framingCamera(const Scene& scene, float aspect) {
-    OrbitCamera camera;
-    camera.frame(sceneBounds(scene), aspect);
-    return camera;
-}
-
 }  // namespace mipgloss::ui

@@ -76,17 +76,6 @@ std::vector<Rgb> faceImage(const CubeMap& c, Face f) {
     return img;
 }
 
-CubeMap boxDownsample(const CubeMap& src, int dstSize) {
-    CubeMap dst(dstSize);
-    for (Face f : kAllFaces) {
-        const std::vector<Rgb> img = boxResample(faceImage(src, f), src.size(), dstSize);
-        for (int y = 0; y < dstSize; ++y)
-            for (int x = 0; x < dstSize; ++x)
-                dst.at(f, x, y) = img[static_cast<std::size_t>(y) * dstSize + static_cast<std::size_t>(x)];
-    }
-    dst.makeSeamless();
-    return dst;
-}
 
 class BuildProgress {
 public:
@@ -240,6 +229,19 @@ MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, F
 }
 
 }  // namespace
+
+
+CubeMap boxDownsample(const CubeMap& src, int dstSize) {
+    CubeMap dst(dstSize);
+    for (Face f : kAllFaces) {
+        const std::vector<Rgb> img = boxResample(faceImage(src, f), src.size(), dstSize);
+        for (int y = 0; y < dstSize; ++y)
+            for (int x = 0; x < dstSize; ++x)
+                dst.at(f, x, y) = img[static_cast<std::size_t>(y) * dstSize + static_cast<std::size_t>(x)];
+    }
+    dst.makeSeamless();
+    return dst;
+}
 
 // Every level a box step from the one before: the shared chain with nothing filtered.
 MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {

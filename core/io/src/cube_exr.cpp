@@ -2,6 +2,8 @@
 
 #include "decode.h"
 
+#include "mipgloss/ibl/builders.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -89,16 +91,7 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
     // from the top (ImfEnvmap's sizeOfFace = min(w, h / 6)); chain levels the caller did not give
     // are box-filtered from the last one; levels below the 1×1 faces hold the mean colour.
     std::vector<CubeMap> cubes(chain.levels.begin(), chain.levels.end());
-    while (cubes.back().size() > 1) {
-        const CubeMap& prev = cubes.back();
-        CubeMap next(prev.size() / 2);
-        for (Face f : kAllFaces)
-            for (int y = 0; y < next.size(); ++y)
-                for (int x = 0; x < next.size(); ++x)
-                    next.at(f, x, y) = 0.25f * (prev.at(f, 2 * x, 2 * y) + prev.at(f, 2 * x + 1, 2 * y) +
-                                                prev.at(f, 2 * x, 2 * y + 1) + prev.at(f, 2 * x + 1, 2 * y + 1));
-        cubes.push_back(std::move(next));
-    }
+    while (cubes.back().size() > 1) cubes.push_back(boxDownsample(cubes.back(), cubes.back().size() / 2));
     Rgb mean(0.0f);
     for (Face f : kAllFaces) mean += cubes.back().at(f, 0, 0) / 6.0f;
 

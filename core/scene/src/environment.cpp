@@ -27,10 +27,6 @@ bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const Chai
            (!needs.irradiance || irradiance);
 }
 
-ChainNeeds needsFor(const Scene& scene, int baseFaceSize) {
-    return chainNeeds(scene, fullChainLevelCount(std::max(baseFaceSize, 1)));
-}
-
 PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
                                        const PreparedEnvironment* previous,
                                        const Progress& progress) {

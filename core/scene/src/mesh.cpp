@@ -44,8 +44,6 @@ namespace fs = std::filesystem;
 
 namespace mipgloss {
 
-float Bounds::radius() const { return 0.5f * glm::length(max - min); }
-
 bool Mesh::isValid() const {
     if (normals.size() != positions.size() || indices.size() % 3 != 0) return false;
     for (std::uint32_t i : indices)

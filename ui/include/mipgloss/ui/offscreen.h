@@ -38,7 +38,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// The camera that frames every visible object of the scene for an image of this aspect.
-OrbitCamera framingCamera(const Scene& scene, float aspect);
-
 }  // namespace mipgloss::ui

@@ -1,7 +1,9 @@
 // Mip-chain builders, selectable by enum (and by name in files and on the command line). Every builder takes a base cube (level 0) and returns a
 // full chain down to 1×1 with seamless (or, for `paper`, its own) borders filled.
 //
-//   box        per-face 2×2 box filter: what glGenerateMipmap does; the baseline that seams.
+//   box        per-face 2×2 box filter: what glGenerateMipmap does. Read through seamless
+//              filtering it shows no step at cube edges (SeamPicture measures it); its defect is
+//              its lobe, far from the Phong lobe its λ declares (docs/builders.md).
 //   paper      Ashikhmin & Ghosh 2002, §3: each face enlarged by its four unfolded neighbours,
 //              corners filled with a copy of a face image (we use the opposite face), repeatedly
 //              box-filtered, the centre cut out with a one-texel border that sampling uses.
@@ -50,6 +52,11 @@ MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options = {});
 MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options = {});
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options = {});
 MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options = {});
+
+// One box step: each face of `level` resampled to `size` by area-proportional weights (2×2
+// averaging when halving), borders filled. The box builder's step, and the cube EXR file's levels
+// below a chain that stops early.
+CubeMap boxDownsample(const CubeMap& level, int size);
 
 // Exact discrete normalized Phong convolution of `base` with exponent n, sampled at the texel
 // centres of a face of size `outSize` (double precision, lobe cut at `cutoff` of its peak).

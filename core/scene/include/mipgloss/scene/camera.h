@@ -5,7 +5,7 @@
 // from `distance` away, turned by `yaw` about +Y and raised by `pitch` (degrees).
 #pragma once
 
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/bounds.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

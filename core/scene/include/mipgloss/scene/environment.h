@@ -6,6 +6,7 @@
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/io/import.h"
+#include "mipgloss/scene/chain_needs.h"
 #include "mipgloss/scene/scene.h"
 
 #include <functional>
@@ -42,9 +43,5 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
                                        const PreparedEnvironment* previous = nullptr,
                                        const Progress& progress = {});
 
-// The scene's needs translated for an environment whose chain has `levelCount` levels, rounded
-// up so that small λ moves do not trigger builds: the filtered range only grows in whole levels
-// and, once built, is kept (see prepareEnvironment).
-ChainNeeds needsFor(const Scene& scene, int baseFaceSize);
 
 }  // namespace mipgloss

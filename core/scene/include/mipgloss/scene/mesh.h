@@ -17,6 +17,7 @@
 #pragma once
 
 #include "mipgloss/io/file_error.h"
+#include "mipgloss/scene/bounds.h"
 
 #include <glm/vec3.hpp>
 
@@ -32,15 +33,6 @@ namespace mipgloss {
 class MeshError : public FileError {
 public:
     using FileError::FileError;
-};
-
-// Axis-aligned bounds plus the bounding sphere used for framing and view culling.
-struct Bounds {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
-    glm::vec3 centre() const { return 0.5f * (min + max); }
-    // Radius of the sphere around centre() that holds the box.
-    float radius() const;
 };
 
 // Indexed triangles with one unit normal per vertex. Invariants (checked by `isValid`):

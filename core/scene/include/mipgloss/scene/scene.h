@@ -45,7 +45,7 @@ struct Material {
 
 struct Transform {
     glm::vec3 translation{0.0f};
-    glm::vec3 rotationDegrees{0.0f};  // applied Z, then Y, then X... see matrix()
+    glm::vec3 rotationDegrees{0.0f};  // about Z first, then X, then Y (matrix())
     float scale = 1.0f;               // uniform, so normals need no inverse transpose
 
     glm::mat4 matrix() const;  // T · Ry · Rx · Rz · S
@@ -99,16 +99,5 @@ Scene makeFigure1Scene();
 // World bounds of the visible objects (empty scene: a unit box at the origin).
 Bounds sceneBounds(const Scene& scene);
 
-// What the environment chain must provide for this scene (renderer and builder agree on it).
-// Levels up to `lastFilteredLevel` are reached through some λ (an object's, or the background's),
-// so they get the builder's lobe filter; deeper levels are reached only by minification of small
-// or distant objects, where the pixel footprint is itself an average, and get the cheap box filter.
-// `irradiance`: some visible object in normal mode asks for the irradiance map.
-struct ChainNeeds {
-    int lastFilteredLevel = 0;
-    bool irradiance = false;
-    bool operator==(const ChainNeeds&) const = default;
-};
-ChainNeeds chainNeeds(const Scene& scene, int levelCount);
 
 }  // namespace mipgloss
