@@ -363,7 +363,7 @@ QWidget* MainWindow::buildEnvironmentDock() {
     handedness_->setObjectName(QStringLiteral("handednessCombo"));
     handedness_->addItem(tr("right-handed (GL)"), static_cast<int>(Handedness::Right));
     handedness_->addItem(tr("left-handed (Irrlicht)"), static_cast<int>(Handedness::Left));
-    handedness_->setToolTip(tr("How six face images are oriented (envio.h)"));
+    handedness_->setToolTip(tr("How six face images are oriented (docs/conventions.md, Handedness)"));
     connect(handedness_, &QComboBox::currentIndexChanged, this, [this, editEnvironment](int) {
         const auto h = static_cast<Handedness>(handedness_->currentData().toInt());
         editEnvironment([h](EnvironmentSettings& s) { s.handedness = h; });

@@ -207,11 +207,9 @@ void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, 
                 value = Rgb(acc / wsum);
             } else {
                 // The lobe is narrower than the source texels around r: its limit is the texel holding r.
-                const FaceCoord c = directionToFace(r);
-                const int sx = std::clamp(static_cast<int>(c.s * static_cast<float>(size)), 0, size - 1);
-                const int sy = std::clamp(static_cast<int>(c.t * static_cast<float>(size)), 0, size - 1);
-                const std::size_t k = static_cast<std::size_t>(sy) * size + static_cast<std::size_t>(sx);
-                value = src.energy[static_cast<std::size_t>(c.face)][k] / src.omega[k];
+                const TexelRef t = texelOf(directionToFace(r), size);
+                const std::size_t k = static_cast<std::size_t>(t.y) * size + static_cast<std::size_t>(t.x);
+                value = src.energy[static_cast<std::size_t>(t.face)][k] / src.omega[k];
             }
             out.at(fo, x, y) = value;
         }
@@ -370,59 +368,63 @@ CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cut
     return out;
 }
 
-CubeMap convolveExact(const CubeMap& base, double exponent, int outSize, double cutoff) {
+ExactLobe::ExactLobe(const CubeMap& base, double exponent, double cutoff)
+    : base_(base), exponent_(exponent), grid_(makeNodeGrid(base.size())) {
     const int m = base.size();
-    const NodeGrid grid = makeNodeGrid(m);
     const std::size_t n = static_cast<std::size_t>(m) * static_cast<std::size_t>(m);
-    std::vector<glm::dvec3> dir(n);
-    std::vector<double> omega(n);
+    dir_.resize(n);
+    omega_.resize(n);
     for (int y = 0; y < m; ++y)
         for (int x = 0; x < m; ++x) {
             const std::size_t k = static_cast<std::size_t>(y) * m + static_cast<std::size_t>(x);
             const double sc = 2.0 * (x + 0.5) / m - 1.0, tc = 2.0 * (y + 0.5) / m - 1.0;
-            dir[k] = glm::normalize(glm::dvec3(sc, tc, 1.0));
-            omega[k] = texelSolidAngle(x, y, m);
+            dir_[k] = glm::normalize(glm::dvec3(sc, tc, 1.0));
+            omega_[k] = texelSolidAngle(x, y, m);
         }
     const double cmin = supportCosine(exponent, cutoff);
-    const double xmax = exponent <= 0.0 ? 1.0 : -std::expm1(std::log(cutoff) / exponent);
+    xmax_ = exponent <= 0.0 ? 1.0 : -std::expm1(std::log(cutoff) / exponent);
     // The walk only culls; a slightly wider cap costs a few taps and loses none.
     const double alpha = std::min(std::acos(cmin) * 1.0001 + 1e-6, 0.5 * 3.14159265358979);
-    const float cosA = static_cast<float>(std::cos(alpha)), sinA = static_cast<float>(std::sin(alpha));
+    cosA_ = static_cast<float>(std::cos(alpha));
+    sinA_ = static_cast<float>(std::sin(alpha));
+}
+
+Rgb ExactLobe::at(const glm::dvec3& direction) const {
+    const int m = base_.size();
+    const glm::dvec3 r = glm::normalize(direction);
+    glm::dvec3 acc(0.0);
+    double wsum = 0.0;
+    forEachNodeInCap(grid_, glm::vec3(r), cosA_, sinA_, [&](Face f, int nx, int ny) {
+        const FaceFrame& fr = faceFrame(f);
+        const glm::dvec3 rl(glm::dot(r, glm::dvec3(fr.u)), glm::dot(r, glm::dvec3(fr.v)),
+                            glm::dot(r, glm::dvec3(fr.axis)));
+        for (int j = 0; j < grid_.group; ++j)
+            for (int i = 0; i < grid_.group; ++i) {
+                const int sx = nx * grid_.group + i, sy = ny * grid_.group + j;
+                const std::size_t k = static_cast<std::size_t>(sy) * m + static_cast<std::size_t>(sx);
+                const glm::dvec3 d = rl - dir_[k];
+                const double xk = 0.5 * glm::dot(d, d);
+                if (xk >= xmax_) continue;
+                const double w = (exponent_ == 0.0 ? 1.0 : std::exp(exponent_ * std::log1p(-xk))) * omega_[k];
+                acc += w * glm::dvec3(base_.at(f, sx, sy));
+                wsum += w;
+            }
+    });
+    if (wsum > 0.0) return Rgb(acc / wsum);
+    const TexelRef t = texelOf(directionToFace(glm::vec3(r)), m);
+    return base_.at(t.face, t.x, t.y);
+}
+
+CubeMap convolveExact(const CubeMap& base, double exponent, int outSize, double cutoff) {
+    const ExactLobe lobe(base, exponent, cutoff);
     CubeMap out(outSize);
     parallelFor(0, 6 * outSize, [&](int row) {
         const Face fo = static_cast<Face>(row / outSize);
         const int y = row % outSize;
+        const FaceFrame& fro = faceFrame(fo);
         for (int x = 0; x < outSize; ++x) {
             const double sc = 2.0 * (x + 0.5) / outSize - 1.0, tc = 2.0 * (y + 0.5) / outSize - 1.0;
-            const FaceFrame& fro = faceFrame(fo);
-            const glm::dvec3 r = glm::normalize(glm::dvec3(fro.axis) + sc * glm::dvec3(fro.u) +
-                                                tc * glm::dvec3(fro.v));
-            glm::dvec3 acc(0.0);
-            double wsum = 0.0;
-            forEachNodeInCap(grid, glm::vec3(r), cosA, sinA, [&](Face f, int nx, int ny) {
-                const FaceFrame& fr = faceFrame(f);
-                const glm::dvec3 rl(glm::dot(r, glm::dvec3(fr.u)), glm::dot(r, glm::dvec3(fr.v)),
-                                    glm::dot(r, glm::dvec3(fr.axis)));
-                for (int j = 0; j < grid.group; ++j)
-                    for (int i = 0; i < grid.group; ++i) {
-                        const int sx = nx * grid.group + i, sy = ny * grid.group + j;
-                        const std::size_t k = static_cast<std::size_t>(sy) * m + static_cast<std::size_t>(sx);
-                        const glm::dvec3 d = rl - dir[k];
-                        const double xk = 0.5 * glm::dot(d, d);
-                        if (xk >= xmax) continue;
-                        const double w =
-                            (exponent == 0.0 ? 1.0 : std::exp(exponent * std::log1p(-xk))) * omega[k];
-                        acc += w * glm::dvec3(base.at(f, sx, sy));
-                        wsum += w;
-                    }
-            });
-            if (wsum > 0.0) {
-                out.at(fo, x, y) = Rgb(acc / wsum);
-            } else {
-                const FaceCoord c = directionToFace(glm::vec3(r));
-                out.at(fo, x, y) = base.at(c.face, std::clamp(static_cast<int>(c.s * static_cast<float>(m)), 0, m - 1),
-                                           std::clamp(static_cast<int>(c.t * static_cast<float>(m)), 0, m - 1));
-            }
+            out.at(fo, x, y) = lobe.at(glm::dvec3(fro.axis) + sc * glm::dvec3(fro.u) + tc * glm::dvec3(fro.v));
         }
     });
     out.makeSeamless();

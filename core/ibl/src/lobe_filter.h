@@ -63,7 +63,24 @@ double supportCosine(double exponent, double cutoff);
 // from a table, double sums). Borders of the result are filled.
 CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff);
 
-// The same sum at the base, in double precision with exact weights exp(n·log(R·ω)).
+// The exact sum at the base, in double precision with exact weights exp(n·log(R·ω)), at any
+// direction: Σ w(R·ω)·L·Ω / Σ w(R·ω)·Ω over the base texels. Keeps a reference to `base`.
+class ExactLobe {
+public:
+    ExactLobe(const CubeMap& base, double exponent, double cutoff);
+    Rgb at(const glm::dvec3& direction) const;  // direction need not be normalized
+
+private:
+    const CubeMap& base_;
+    double exponent_;
+    NodeGrid grid_;
+    std::vector<glm::dvec3> dir_;  // face-local texel centres, shared by the six faces
+    std::vector<double> omega_;
+    double xmax_ = 1.0;
+    float cosA_ = 0.0f, sinA_ = 0.0f;
+};
+
+// That sum at the texel centres of a face of size outSize, borders filled.
 CubeMap convolveExact(const CubeMap& base, double exponent, int outSize, double cutoff);
 
 }  // namespace mipgloss::detail

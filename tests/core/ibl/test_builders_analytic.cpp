@@ -1,4 +1,4 @@
-// Analytic ground truth for the mip builders (MATHS.md): constant, linear and spherical-harmonic
+// Analytic ground truth for the mip builders (docs/phong-lobe.md, "Funk–Hecke band factors"): constant, linear and spherical-harmonic
 // environments through the Funk–Hecke theorem, and energy.
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/irradiance.h"
@@ -68,7 +68,7 @@ TEST(Builders, ConstantEnvironmentStaysConstantAtEveryLevel) {
 }
 
 TEST(Builders, LinearEnvironmentGetsTheFunkHeckeGainAtEveryLevel) {
-    // L = c + a·ω convolved with D_n is c + a·R·(n+1)/(n+2) (MATHS.md).
+    // L = c + a·ω convolved with D_n is c + a·R·(n+1)/(n+2) (docs/phong-lobe.md).
     // Tolerance 0.5 % of |a|: the default builder's deep levels treat each pyramid texel (1/8 of the
     // level's texel, 0.34 σ of its lobe) as a point, which perturbs the lobe's response by about
     // (0.34)²/24 ≈ 0.5 % of the field's variation at worst; the reference is exact to float

@@ -51,7 +51,7 @@ TEST(PhongMapping, FittedExponentOfEachBuiltLevelMatchesTheDeclaredOne) {
     // Fit the exponent whose exact convolution best matches each built level, on an environment
     // with detail at every scale (random small bright spots on a sky gradient). The default
     // builder must land within 10 % of n(λ); the box chain's best fit is printed for comparison
-    // (MATHS.md measured 1.1–3.3× the solid-angle exponent).
+    // (docs/phong-lobe.md; this test prints the box fits).
     constexpr int kSize = 32;
     std::mt19937 rng(7);
     std::normal_distribution<float> gauss;

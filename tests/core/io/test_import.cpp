@@ -249,7 +249,7 @@ double seamRatio(const CubeMap& c) {
 
 TEST(FaceImport, Irrlicht2SkyboxIsSeamlessAsLeftHanded) {
     // Measured: right-handed 9.4 (discontinuous), left-handed 1.24 (continuous; the rest is the
-    // JPEG and the edge geometry). See envio.h.
+    // JPEG and the edge geometry). See import.h and docs/conventions.md, "Handedness".
     const fs::path up = test::asset("cubemaps/irrlicht2/irrlicht2_up.jpg");
     MIPGLOSS_REQUIRE_ASSET(up);
     ImportOptions left;
@@ -708,7 +708,7 @@ TEST(CubeEnvExport, ThreeLevelChainRoundTripsExactly) {
 TEST(CubeEnvExport, FacesFollowOpenExrCubeMapOrientation) {
     // OpenEXR's ImfEnvmap (CubeMap::direction and pixelPosition) for pixel (a, b) of a face,
     // a rightwards and b downwards in [-1, 1]. A linear environment read back from the raw file
-    // must match it; texel centres differ from ImfEnvmap's by up to half a texel (envio.h).
+    // must match it; texel centres differ from ImfEnvmap's by up to half a texel (cube_exr.h).
     constexpr int kN = 16;
     const CubeMap cube = test::cubeFromFunction(kN, [](const glm::vec3& d) { return Rgb(2.0f) + d; });
     MipChain chain;

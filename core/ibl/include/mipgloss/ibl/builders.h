@@ -11,7 +11,8 @@
 //              n = lambdaToExponent(k, N), filtered across faces with exact solid angles. Levels
 //              1..3 filter the base itself; deeper levels filter an energy-preserving pyramid level
 //              three steps finer that keeps each texel's energy at its energy-weighted direction
-//              (so a sun stays where it is). O(N²) per level, O(N² log N) in all.
+//              (so a sun stays where it is). O(N²) per level; the levels shrink 4× each, so
+//              O(N²) for the chain (docs/builders.md counts the taps).
 //   reference  the exact discrete normalized Phong convolution of the base at every level, in
 //              double precision with the lobe cut at 1e-10 of its peak. Slow; for tests and bench.
 #pragma once

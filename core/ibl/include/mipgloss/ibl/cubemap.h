@@ -75,7 +75,7 @@ glm::vec3 faceToDirection(Face face, float s, float t);
 // Unit direction through the centre of texel (x, y) of a size-M face.
 glm::vec3 texelDirection(Face face, int x, int y, int size);
 
-// Exact solid angle of texel (x, y) of a size-M face (MATHS.md: A(x, y) = atan2(xy, sqrt(x²+y²+1))).
+// Exact solid angle of texel (x, y) of a size-M face (docs/conventions.md, "Solid angles": A(x, y) = atan2(xy, sqrt(x²+y²+1))).
 double texelSolidAngle(int x, int y, int size);
 
 // Solid angle of the planar rectangle [u0,u1]×[v0,v1] on a face plane (face coords in [-1, 1]).
