@@ -92,7 +92,10 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
 // lookup at λ and for the irradiance map (exact E/π = the n = 1 lobe). Prints the chain's error,
 // a benchmark of the method itself: each level holds the lobe exactly at its texel centres (issue
 // 2's accuracy test), but the lobe n(λ) is about one texel wide (solid-angle matching), so the
-// bilinear lookup between centres cannot follow it. Asserts the irradiance map's error.
+// bilinear lookup between centres cannot follow it. Asserts every case: the irradiance map's
+// error against its accuracy bound, each chain lookup's error against an upper bound just above
+// what it measures (a regression guard, not an accuracy claim), and that every chain lookup is
+// worse than the irradiance map (the point of the comparison).
 TEST(DiffusePicture, IrradianceMapMatchesTheExactConvolutionChainLookupIsMeasured) {
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
@@ -105,12 +108,20 @@ TEST(DiffusePicture, IrradianceMapMatchesTheExactConvolutionChainLookupIsMeasure
         float lambda;
         bool irradiance;
         double exponent;
+        // Upper bounds on the mean and the worst relative error of the pixels. The chain cases'
+        // bounds sit about 10 % (mean) and 15 % (worst) above the values measured on llvmpipe
+        // (Mesa, xvfb) at face size 128: mean 38.5 %, 66.2 %, 24.9 %; worst 1040 %, 950 %, 188 %
+        // (the worst pixels face small bright lamps that the one-texel-wide lobe misses or hits).
+        double meanBound, worstBound;
     };
     const int n = env->base->size();
-    for (const Case c : {Case{"chain λ 5", 5.0f, false, lambdaToExponent(5.0, n)},
-                         Case{"chain λ 6", 6.0f, false, lambdaToExponent(6.0, n)},
-                         Case{"chain λ 7", 7.0f, false, lambdaToExponent(7.0, n)},
-                         Case{"irradiance", 0.0f, true, 1.0}}) {
+    ASSERT_EQ(n, 128) << "the chain bounds below were measured at face size 128";
+    // The irradiance case runs first: the chain cases compare themselves with it.
+    double irradianceMean = -1.0, irradianceWorst = -1.0;
+    for (const Case c : {Case{"irradiance", 0.0f, true, 1.0, 0.01, 0.05},
+                         Case{"chain λ 5", 5.0f, false, lambdaToExponent(5.0, n), 0.42, 12.0},
+                         Case{"chain λ 6", 6.0f, false, lambdaToExponent(6.0, n), 0.73, 11.0},
+                         Case{"chain λ 7", 7.0f, false, lambdaToExponent(7.0, n), 0.28, 2.2}}) {
         // The truth, from the base resampled to 32² (texels of 2.8°, energy kept) onto a 32² cube:
         // these lobes are 8° (n = 47) and wider, so the coarser source changes the result by
         // far less than the errors measured here (the irradiance case bounds it: 0.05 %).
@@ -143,10 +154,23 @@ TEST(DiffusePicture, IrradianceMapMatchesTheExactConvolutionChainLookupIsMeasure
             }
         std::printf("[ DiffusePicture ] %-11s (n = %6.2f): mean relative error %.2f %%, worst %.2f %%\n", c.name,
                     c.exponent, 100.0 * sum / count, 100.0 * worst);
+        // The framed sphere covers 14,424 of the 65,536 pixels (22 %); an eighth rules out an empty picture.
+        ASSERT_GT(count, w * h / 8) << c.name << ": too few sphere pixels";
+        const double mean = sum / count;
+        // Irradiance: 32² map of a smooth field, bilinear: measured 0.04 % mean, 0.74 % worst on
+        // llvmpipe; bound 1 % mean, 5 % worst. Chain cases: the bounds in the table above.
+        EXPECT_LT(mean, c.meanBound) << c.name;
+        EXPECT_LT(worst, c.worstBound) << c.name;
         if (c.irradiance) {
-            // 32² map of a smooth field, bilinear: measured 0.2 % mean; bound 1 % mean, 5 % worst.
-            EXPECT_LT(sum / count, 0.01);
-            EXPECT_LT(worst, 0.05);
+            irradianceMean = mean;
+            irradianceWorst = worst;
+        } else {
+            // The comparison's point: the paper's chain lookup by the normal is a worse diffuse
+            // than the irradiance map, in the mean and at the worst pixel (measured: 25-66 % vs
+            // 0.04 % mean).
+            ASSERT_GE(irradianceMean, 0.0) << "the irradiance case must run first";
+            EXPECT_GT(mean, irradianceMean) << c.name;
+            EXPECT_GT(worst, irradianceWorst) << c.name;
         }
     }
 }
@@ -308,6 +332,11 @@ TEST(SeamPicture, DiffuseSphereShowsNoCubeEdges) {
         // default's measured values with about 0.2 to spare.
         const double bound = lambda < 6.5f ? 1.35 : 1.65;
         EXPECT_LT(phong.ratio(), bound) << tag;
+        // The default shows no more of the cube's edges than box does: its ratio at most box's
+        // plus 0.1 (default minus box measured on llvmpipe: -0.14, +0.06, 0.00, +0.03 at λ 4-7;
+        // both read through seamless filtering, so neither has a step and the difference is the
+        // lobes' shapes).
+        EXPECT_LE(phong.ratio(), box.ratio() + 0.1) << tag;
     }
 }
 

@@ -137,6 +137,10 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     // bilinear weights (1/256 steps) of a large difference exceed 2 % of the dim side.
     EXPECT_LE(over, compared / 1000);
     EXPECT_LE(worst, 8.0);
+    // The mean relative error over the compared pixels, which the line above prints: measured on
+    // llvmpipe 0.05 % (irradiance) to 0.14 % (mirror); bound 0.3 %, well inside the 2 % per-pixel
+    // tolerance, so a lookup that drifts everywhere by less than the tolerance still fails.
+    EXPECT_LT(sumRel / std::max(compared, 1), 0.003);
     if (over > compared / 1000 || worst > 8.0 || ::testing::Test::HasFailure()) {
         const auto dir = test::outputDir();
         const std::string stem = std::string("sphere_") + param.name;

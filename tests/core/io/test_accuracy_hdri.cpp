@@ -120,6 +120,10 @@ TEST(Seams, NoLevelOfTheDefaultChainJumpsMoreAcrossEdgesThanInsideFaces) {
         std::printf("[seam] level %d (%2d^2): across/inside jump  phong %.3f  box %.3f\n", k, levelSize(kSize, k),
                     phongRatio, boxRatio);
         EXPECT_LE(phongRatio, 1.0) << "level " << k;
+        // The default is no rougher at the edges than box at any level, to within 0.01 (at level
+        // 1 both average 2×2 base texels and measure 0.970 vs 0.973; below, box is rougher by
+        // 0.04 to 0.13).
+        EXPECT_LE(phongRatio, boxRatio + 0.01) << "level " << k;
     }
     // The box chain's edges are rougher than the default's at its smallest levels.
     for (int k = levels - 3; k < levels - 1; ++k)

@@ -13,8 +13,7 @@
 
 #include <cmath>
 
-#include <chrono>
-#include <cstdio>
+#include <string>
 
 namespace mipgloss {
 namespace {
@@ -175,19 +174,34 @@ TEST(PrepareEnvironment, BadFileIsAnErrorNamingIt) {
     }
 }
 
-// A benchmark, not a test of time: prints what filtering only the reachable levels saves.
-TEST(PrepareEnvironment, PrintsWhatSkippingLevelsSaves) {
+// Skipping levels (BuildOptions::lastFilteredLevel, what prepareEnvironment asks for): the levels
+// through k are the full chain's, bit for bit, and each level above is one box step of the level
+// before; the chain stays full. (What skipping saves is timed by the PhongSkipLevels benchmark in
+// tests/bench.)
+TEST(PrepareEnvironment, SkippedLevelsAreBoxStepsAndTheFilteredOnesUnchanged) {
     EnvironmentSettings settings;
-    settings.faceSize = 256;
+    settings.faceSize = 32;
     const PreparedEnvironment imported = prepareEnvironment(settings, ChainNeeds{0, false});
-    for (const int through : {0, 3, 5, 8}) {
-        const auto start = std::chrono::steady_clock::now();
+    const MipChain full = buildChain(*imported.base, Builder::Phong);
+    ASSERT_EQ(full.levelCount(), 6);
+    for (const int through : {0, 2, 5}) {
+        SCOPED_TRACE("filtered through level " + std::to_string(through));
         BuildOptions options;
         options.lastFilteredLevel = through;
         const MipChain chain = buildChain(*imported.base, Builder::Phong, options);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        EXPECT_EQ(chain.levelCount(), 9);
-        std::printf("[ skip ] face 256, phong filter through level %d of 8: %.3f s\n", through, seconds);
+        ASSERT_EQ(chain.levelCount(), full.levelCount());
+        for (int k = 0; k < chain.levelCount(); ++k) {
+            const CubeMap& got = chain.levels[static_cast<std::size_t>(k)];
+            const CubeMap expected = k <= through ? full.levels[static_cast<std::size_t>(k)]
+                                                  : boxDownsample(chain.levels[static_cast<std::size_t>(k - 1)],
+                                                                  levelSize(32, k));
+            ASSERT_EQ(got.size(), expected.size()) << "level " << k;
+            int differing = 0;
+            for (Face f : kAllFaces)
+                for (int y = 0; y < got.size(); ++y)
+                    for (int x = 0; x < got.size(); ++x) differing += got.at(f, x, y) != expected.at(f, x, y);
+            EXPECT_EQ(differing, 0) << "level " << k << (k <= through ? " (filtered)" : " (box step)");
+        }
     }
 }
 
