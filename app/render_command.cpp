@@ -3,6 +3,8 @@
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
+#include "mipgloss/scene/lobes.h"
+#include "mipgloss/io/image_file.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/scene.h"
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -31,11 +34,11 @@ namespace fs = std::filesystem;
 namespace mipgloss::app {
 
 const char* const kRenderUsage = R"(
-  mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--lambda L]
+  mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--lambda L | --exponent N]
                   [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
-                  --out IMAGE.png
+                  [--aov AOV.exr] --out IMAGE.png|IMAGE.exr
   mipgloss bench-render [--objects N] [--size WxH] [--frames F] [--mesh FILE | --million]
 
 render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X display; under
@@ -44,12 +47,20 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   SCENE.json     a scene saved by mipgloss-gui
   --env FILE     environment (as for bake); replaces the scene's
   --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM), repeatable; replaces the scene's objects
-  --lambda L     minimum mip level for every object (0 = mirror)
+  --lambda L     every object's blur λ: the Phong lobe n = 3*128^2*4^-L - 1, the same at any
+                 face size (0 = mirror; 0 to 8)
+  --exponent N   every object's lobe by its Phong exponent instead (N >= 0; "mirror" or inf)
   --mode M       reflect (reflection vector) or normal (surface normal) for every object
   --size WxH     image size (default 1024x384 for the default scene, else 800x600)
   --env-size N   base face size of the cube (default: the scene's, 128)
   --builder NAME mip builder (default phong; --method is the old name)
-  --out FILE     output image (PNG, or any format Qt writes, by extension)
+  --out FILE     output image: .exr writes the linear, scene-referred picture (float RGB,
+                 before exposure and tone mapping); other extensions (PNG, ...) the tone-mapped one
+  --aov FILE.exr per pixel, float channels dirX dirY dirZ (the unit direction the environment is
+                 read at, in the frame of `mipgloss bake`'s faces), exponent (the Phong exponent
+                 of the lobe shown; 0 where no object, inf for a mirror) and exact (1 where the
+                 pixel is meant to equal that lobe at that direction)
+  The picture is the settled one: every material's own lobe cube is made first.
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
@@ -119,6 +130,7 @@ int runRender(Args args, const char* argv0) {
     std::optional<fs::path> scenePath, envPath, outPath;
     std::vector<fs::path> meshPaths;
     std::optional<float> lambda, exposure, backgroundLambda, yaw, pitch;
+    std::optional<fs::path> aovPath;
     std::optional<LookupMode> mode;
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
@@ -131,9 +143,18 @@ int runRender(Args args, const char* argv0) {
         if (a == "--env") envPath = value();
         else if (a == "--mesh") meshPaths.emplace_back(value());
         else if (a == "--out") outPath = value();
-        else if (a == "--lambda") lambda = parseFloat(a, value(), 0.0f, kMaxLambda);
+        else if (a == "--lambda") lambda = parseFloat(a, value(), 0.0f, static_cast<float>(kMaxLambda));
+        else if (a == "--exponent") {
+            const std::string v = value();
+            if (v == "mirror" || v == "inf") {
+                lambda = 0.0f;
+            } else {
+                const float n = parseFloat(a, v, 0.0f, 1e9f);
+                lambda = static_cast<float>(exponentToLambda(n));
+            }
+        } else if (a == "--aov") aovPath = value();
         else if (a == "--exposure") exposure = parseFloat(a, value(), -20.0f, 20.0f);
-        else if (a == "--background-lambda") backgroundLambda = parseFloat(a, value(), 0.0f, kMaxLambda);
+        else if (a == "--background-lambda") backgroundLambda = parseFloat(a, value(), 0.0f, static_cast<float>(kMaxLambda));
         else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
         else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
         else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
@@ -224,9 +245,42 @@ int runRender(Args args, const char* argv0) {
         if (pitch) camera.pitchDegrees = *pitch;
         camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
     }
+    // The settled picture: each lobe in use from its own cube.
+    std::vector<std::shared_ptr<const LobeCube>> lobes;
+    if (environment->filter)
+        for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+    renderer.setLobes(lobes);
     const QImage image = renderer.render(scene, camera, environment, width, height);
-    if (image.isNull() || !image.save(QString::fromStdString(outPath->string())))
+    if (image.isNull()) throw std::runtime_error(outPath->string() + ": the render failed");
+    auto lower = [](std::string s) {
+        for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
+    if (lower(outPath->extension().string()) == ".exr") {
+        int w = 0, h = 0;
+        const std::vector<glm::vec4> hdr = renderer.lastHdr(w, h);
+        std::vector<float> rgb;
+        rgb.reserve(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+        for (int y = h - 1; y >= 0; --y)  // lastHdr is bottom row first; the file top row first
+            for (int x = 0; x < w; ++x) {
+                const glm::vec4& p = hdr[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+                rgb.insert(rgb.end(), {p.r, p.g, p.b});
+            }
+        writeFloatChannels(*outPath, w, h, {"R", "G", "B"}, rgb);
+    } else if (!image.save(QString::fromStdString(outPath->string()))) {
         throw std::runtime_error(outPath->string() + ": cannot write the image");
+    }
+    if (aovPath) {
+        const ui::AovImage aov = renderer.renderAov(scene, camera, environment, width, height);
+        std::vector<float> values;
+        values.reserve(static_cast<std::size_t>(aov.width) * static_cast<std::size_t>(aov.height) * 5);
+        for (int y = aov.height - 1; y >= 0; --y)
+            for (int x = 0; x < aov.width; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(aov.width) + static_cast<std::size_t>(x);
+                values.insert(values.end(), {aov.direction[i].x, aov.direction[i].y, aov.direction[i].z, aov.exponent[i], aov.exact[i]});
+            }
+        writeFloatChannels(*aovPath, aov.width, aov.height, {"dirX", "dirY", "dirZ", "exponent", "exact"}, values);
+    }
     if (!quiet) {
         const ui::RenderCounters& c = renderer.counters();
         std::cerr << "mipgloss: " << outPath->string() << ": " << width << "x" << height << ", "
@@ -234,7 +288,8 @@ int runRender(Args args, const char* argv0) {
                   << c.objectsCulled << " culled), environment " << environment->settings.faceSize
                   << "² " << builderName(environment->settings.builder) << " filtered through level "
                   << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
-                  << (environment->irradiance ? ", irradiance" : "") << ", prepared in "
+                  << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
+                  << " lobe cube(s) (" << c.objectsSettled << " objects settled), prepared in "
                   << prepareSeconds << " s; " << renderer.glDescription() << '\n';
     }
     return 0;

@@ -1,18 +1,24 @@
 #version 410 core
-// One environment lookup per fragment (Ashikhmin & Ghosh 2002, §4). The material's λ is not used
-// here in the paper's path: it is the bound sampler's GL_TEXTURE_MIN_LOD, so texture() samples at
-// max(λ, footprint LOD) with trilinear filtering between levels.
+// One environment lookup per fragment (Ashikhmin & Ghosh 2002, §4). While a material's λ moves,
+// the lookup reads the chain: the bound sampler's GL_TEXTURE_MIN_LOD is the chain level standing
+// in for the material's lobe (phong.h, chainLevelForExponent), so texture() samples at
+// max(that level, footprint LOD) with trilinear filtering. Once λ rests, the lookup reads the
+// material's own lobe cube (lobes.h), which holds the exact lobe.
 in vec3 vWorldPosition;
 in vec3 vNormal;
 
-uniform samplerCube uEnvironment;  // unit 0: the chain, sampler with MIN_LOD = λ
+uniform samplerCube uEnvironment;  // unit 0: the chain
 uniform samplerCube uIrradiance;   // unit 1: E/π, used by normal mode when asked
+uniform samplerCube uLobe;         // unit 2: the material's lobe cube, when uUseLobe
 uniform vec3 uCameraPosition;
 uniform mat3 uEnvironmentRotation;  // world direction -> environment direction
 uniform vec3 uTint;
 uniform int uLookup;       // 0 reflection vector, 1 normal, 2 normal into the irradiance map
+uniform bool uUseLobe;
 uniform bool uSharperAtGrazing;
-uniform float uLambda;     // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
+uniform float uLambda;       // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
+uniform float uLevelOffset;  // chain level of λ: λ + uLevelOffset (phong.h), for the grazing option
+uniform float uLastLevel;    // the chain's last read level
 
 layout(location = 0) out vec4 fragColour;
 
@@ -32,8 +38,11 @@ void main() {
         // of the hardware is kept, so far objects still get mipmapping's blur.
         float cosTheta = clamp(dot(n, v), 0.0, 1.0);
         float lambda = uLambda * (1.0 - pow(1.0 - cosTheta, 5.0));
+        float level = lambda > 0.0 ? clamp(lambda + uLevelOffset, 0.0, uLastLevel) : 0.0;
         float footprint = textureQueryLod(uEnvironment, direction).y;
-        colour = textureLod(uEnvironment, direction, max(lambda, footprint)).rgb;
+        colour = textureLod(uEnvironment, direction, max(level, footprint)).rgb;
+    } else if (uUseLobe) {
+        colour = texture(uLobe, direction).rgb;
     } else {
         colour = texture(uEnvironment, direction).rgb;
     }

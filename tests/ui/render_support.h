@@ -120,17 +120,5 @@ inline float footprintLod(const glm::vec3& d, const glm::vec3& dx, const glm::ve
     return std::log2(std::max(rho, 1e-30f));
 }
 
-// The paper's lookup on the CPU: trilinear between floor(lod) and the next level, each bilinear
-// across faces (the chain's borders stand for GL_TEXTURE_CUBE_MAP_SEAMLESS).
-inline Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, float lod) {
-    const float last = static_cast<float>(chain.levelCount() - 1);
-    lod = std::clamp(lod, 0.0f, last);
-    const int l0 = static_cast<int>(std::floor(lod));
-    const float f = lod - static_cast<float>(l0);
-    const Rgb a = chain.levels[static_cast<std::size_t>(l0)].sample(direction);
-    if (f <= 0.0f || l0 + 1 > static_cast<int>(last)) return a;
-    const Rgb b = chain.levels[static_cast<std::size_t>(l0 + 1)].sample(direction);
-    return a + f * (b - a);
-}
 
 }  // namespace mipgloss::test

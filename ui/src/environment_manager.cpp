@@ -10,6 +10,7 @@
 #include <QThreadPool>
 #include <QtConcurrent/QtConcurrentRun>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
 
@@ -27,11 +28,88 @@ QThreadPool& workerPool() {
 }
 }  // namespace
 
-EnvironmentManager::EnvironmentManager(QObject* parent) : QObject(parent) {}
+EnvironmentManager::EnvironmentManager(QObject* parent) : QObject(parent), settle_(new QTimer(this)) {
+    settle_->setSingleShot(true);
+    settle_->setInterval(kSettleMs);
+    connect(settle_, &QTimer::timeout, this, [this] {
+        lobesWanted_ = true;
+        if (!busy_ && !lobeBusy_) startLobeJob();
+    });
+}
 
 EnvironmentManager::~EnvironmentManager() {
     if (cancelRunning_) *cancelRunning_ = true;
+    if (cancelLobes_) *cancelLobes_ = true;
     workerPool().waitForDone();
+}
+
+std::vector<std::shared_ptr<const LobeCube>> EnvironmentManager::lobes() const {
+    std::vector<std::shared_ptr<const LobeCube>> out;
+    for (const auto& [key, lobe] : lobes_) out.push_back(lobe);
+    return out;
+}
+
+void EnvironmentManager::scheduleLobes() {
+    // λ moved (or the scene changed): a lobe job for the old values is obsolete; wait until
+    // the values rest.
+    if (cancelLobes_) *cancelLobes_ = true;
+    settle_->start();
+}
+
+void EnvironmentManager::startLobeJob() {
+    lobesWanted_ = false;
+    if (!document_ || !current_ || !current_->filter) return;
+    if (lobesFilter_ != current_->filter) {
+        lobes_.clear();
+        lobesFilter_ = current_->filter;
+        emit lobesReady();
+    }
+    const std::vector<int> inUse = lobesInUse(document_->scene());
+    std::vector<int> missing;
+    for (int key : inUse)
+        if (!lobes_.count(key)) missing.push_back(key);
+    // Keep what is in use and up to 8 others (a slider going back and forth), drop the rest.
+    if (lobes_.size() > inUse.size() + 8) {
+        for (auto it = lobes_.begin(); it != lobes_.end() && lobes_.size() > inUse.size() + 8;)
+            it = std::find(inUse.begin(), inUse.end(), it->first) == inUse.end() ? lobes_.erase(it) : std::next(it);
+        emit lobesReady();
+    }
+    if (missing.empty()) return;
+    lobeBusy_ = true;
+    emit busyChanged(true);
+    auto cancel = std::make_shared<std::atomic<bool>>(false);
+    cancelLobes_ = cancel;
+    const std::shared_ptr<const PreparedEnvironment> environment = current_;
+    QPointer<EnvironmentManager> self(this);
+    (void)QtConcurrent::run(&workerPool(), [=] {
+        std::vector<std::shared_ptr<const LobeCube>> made;
+        try {
+            for (int key : missing) {
+                if (*cancel) break;
+                made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+            }
+        } catch (const std::exception& e) {
+            std::cerr << "mipgloss: lobe cube: " << e.what() << '\n';
+        }
+        QMetaObject::invokeMethod(
+            self, [=] {
+                if (!self) return;
+                self->lobeBusy_ = false;
+                if (self->cancelLobes_ == cancel) self->cancelLobes_.reset();
+                // Only lobes of the environment still current are kept.
+                bool changed = false;
+                for (const auto& lobe : made)
+                    if (self->current_ && lobe->filter == self->current_->filter) {
+                        self->lobes_[lobe->key] = lobe;
+                        ++self->counters_.lobeBuilds;
+                        changed = true;
+                    }
+                if (changed) emit self->lobesReady();
+                if (self->lobesWanted_ && !self->busy_) self->startLobeJob();
+                if (!self->busy()) emit self->busyChanged(false);
+            },
+            Qt::QueuedConnection);
+    });
 }
 
 void EnvironmentManager::watch(SceneDocument* document) {
@@ -40,6 +118,7 @@ void EnvironmentManager::watch(SceneDocument* document) {
         if (!document_) return;
         const Scene& scene = document_->scene();
         request(scene.environment, needsFor(scene, scene.environment.faceSize));
+        scheduleLobes();
     };
     connect(document, &SceneDocument::environmentChanged, this, update);
     connect(document, &SceneDocument::materialChanged, this, update);
@@ -128,6 +207,7 @@ void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> resu
         current_ = std::move(result);
         haveFailed_ = false;
         emit environmentReady();
+        lobesWanted_ = true;  // the new environment's lobes
     }
     cancelRunning_.reset();
     if (haveRequest_) {
@@ -140,16 +220,17 @@ void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> resu
         }
     }
     busy_ = false;
-    emit busyChanged(false);
+    if (lobesWanted_ && !settle_->isActive()) startLobeJob();
+    if (!busy()) emit busyChanged(false);
 }
 
 bool EnvironmentManager::waitUntilIdle(int timeoutMs) {
     QDeadlineTimer deadline(timeoutMs);
-    while (busy_ && !deadline.hasExpired()) {
+    while ((busy() || settle_->isActive()) && !deadline.hasExpired()) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
         QThread::msleep(2);
     }
-    return !busy_;
+    return !busy() && !settle_->isActive();
 }
 
 }  // namespace mipgloss::ui

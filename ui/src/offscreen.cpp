@@ -58,6 +58,20 @@ QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
     return d.fbo->toImage(true).convertToFormat(QImage::Format_RGB32);
 }
 
+void OffscreenRenderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
+    if (!impl_->ready || !impl_->context.makeCurrent(&impl_->surface)) return;
+    impl_->renderer.setLobes(lobes);
+}
+
+AovImage OffscreenRenderer::renderAov(const Scene& scene, const OrbitCamera& camera,
+                                      const std::shared_ptr<const PreparedEnvironment>& environment, int width,
+                                      int height) {
+    Impl& d = *impl_;
+    if (!d.ready || !d.context.makeCurrent(&d.surface)) return {};
+    d.renderer.setEnvironment(environment);
+    return d.renderer.renderAov(scene, camera, width, height);
+}
+
 std::vector<glm::vec4> OffscreenRenderer::lastHdr(int& width, int& height) {
     if (!impl_->ready || !impl_->context.makeCurrent(&impl_->surface)) {
         width = height = 0;

@@ -45,17 +45,28 @@ int lambdaKey(float lambda) { return static_cast<int>(std::lround(lambda * 1024.
 
 struct Renderer::Impl {
     QOpenGLFunctions_4_1_Core* gl = nullptr;
-    std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram;
+    std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram;
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
+    // The mirror: level 0 with its own box mips. The chain's deeper levels hold wide lobes
+    // (phong.h), so a minified mirror read through the chain would turn glossy; through this it
+    // gets mipmapping's usual footprint filtering instead.
+    GLuint mirrorTexture = 0;
     GLuint irradianceTexture = 0;
     int environmentLevels = 0;
     int environmentFaceSize = 0;
     const CubeMap* uploadedIrradiance = nullptr;
     std::shared_ptr<const PreparedEnvironment> environment;  // keeps what is uploaded alive
 
-    std::map<int, GLuint> samplers;  // λ key -> sampler with GL_TEXTURE_MIN_LOD = λ
+    std::map<int, GLuint> samplers;  // level key -> sampler with GL_TEXTURE_MIN_LOD = that level
+    GLuint lobeSampler = 0;          // trilinear, for lobe cubes (their own box mips)
+
+    struct GpuLobe {
+        std::shared_ptr<const LobeCube> source;
+        GLuint texture = 0;
+    };
+    std::map<int, GpuLobe> lobes;  // lobe key -> texture
     std::unordered_map<const Mesh*, GpuMesh> meshes;
 
     // Targets: multisampled HDR colour + depth, resolved into a single-sample HDR texture.
@@ -81,6 +92,92 @@ struct Renderer::Impl {
         ++counters.samplersCreated;
         samplers.emplace(key, s);
         return s;
+    }
+
+    // The lobe cube for a material's λ, when one from the current environment is on the GPU.
+    const GpuLobe* lobeFor(float lambda) const {
+        if (!environment || !environment->filter) return nullptr;
+        const auto it = lobes.find(lobeKey(lambda));
+        if (it == lobes.end() || it->second.source->filter != environment->filter) return nullptr;
+        return &it->second;
+    }
+
+    // Chain level (MIN_LOD) standing in for λ's lobe while it moves.
+    float chainLevel(float lambda) const {
+        if (!isValidLambda(lambda)) return 0.0f;
+        return static_cast<float>(chainLevelForExponent(lambdaToExponent(lambda), environmentFaceSize));
+    }
+
+    // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
+    // its lobe cube when one has arrived, else from the chain at the level standing in for it.
+    void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
+                     const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum,
+                     bool aov) {
+        program.bind();
+        gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
+                               glm::value_ptr(viewProjection));
+        gl->glUniformMatrix3fv(program.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
+                               glm::value_ptr(envRotation));
+        gl->glUniform3fv(program.uniformLocation("uCameraPosition"), 1, glm::value_ptr(eye));
+        const int locModel = program.uniformLocation("uModel");
+        const int locNormal = program.uniformLocation("uNormalMatrix");
+        const int locTint = program.uniformLocation("uTint");
+        const int locLookup = program.uniformLocation("uLookup");
+        const int locGrazing = program.uniformLocation("uSharperAtGrazing");
+        const int locLambda = program.uniformLocation("uLambda");
+        const int locUseLobe = program.uniformLocation("uUseLobe");
+        const int locLobeExact = program.uniformLocation("uLobeExact");
+        const int locExponent = program.uniformLocation("uExponent");
+        // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
+        // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
+        gl->glUniform1f(program.uniformLocation("uLevelOffset"),
+                        static_cast<float>(std::log2(std::max(environmentFaceSize, 1) / 128.0) - 0.5 * std::log2(96.0)));
+        gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
+        const bool irradianceReady = uploadedIrradiance != nullptr;
+
+        for (const SceneObject& object : scene.objects) {
+            if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
+            if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
+                if (!aov) ++counters.objectsCulled;
+                continue;
+            }
+            const GpuMesh& mesh = gpuMesh(object.mesh);
+            const Material& m = object.material;
+            const float lambda = isValidLambda(m.lambda) ? m.lambda : 0.0f;
+            int lookup = m.mode == LookupMode::Reflect ? 0 : 1;
+            if (lookup == 1 && m.useIrradiance && irradianceReady) lookup = 2;
+            const GpuLobe* lobe = lookup != 2 && lambda > 0.0f && !m.sharperAtGrazing ? lobeFor(lambda) : nullptr;
+            const glm::mat4 model = object.transform.matrix();
+            const glm::mat3 rotation =
+                glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
+            gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
+            gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
+            gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
+            gl->glUniform1i(locLookup, lookup);
+            gl->glUniform1i(locGrazing, m.sharperAtGrazing && lookup != 2 ? 1 : 0);
+            gl->glUniform1f(locLambda, lambda);
+            gl->glUniform1i(locUseLobe, lobe ? 1 : 0);
+            gl->glUniform1i(locLobeExact, lobe && lobe->source->holdsLobe ? 1 : 0);
+            gl->glUniform1f(locExponent, static_cast<float>(lambdaToExponent(lambda)));
+            if (lobe) {
+                gl->glActiveTexture(GL_TEXTURE2);
+                gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe->texture);
+                gl->glBindSampler(2, lobeSampler);
+                gl->glActiveTexture(GL_TEXTURE0);
+            }
+            // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
+            // level standing in for the material's lobe; a mirror reads the mirror texture.
+            const bool mirror = lambda <= 0.0f && lookup != 2;
+            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, mirror ? mirrorTexture : environmentTexture);
+            gl->glBindSampler(0, sampler(m.sharperAtGrazing || mirror ? 0.0f : chainLevel(lambda)));
+            gl->glBindVertexArray(mesh.vao);
+            gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+            if (aov) continue;
+            ++counters.objectsDrawn;
+            ++counters.drawCalls;
+            if (lobe) ++counters.objectsSettled;
+            else if (lookup != 2 && lambda > 0.0f) ++counters.objectsFromChain;
+        }
     }
 
     void uploadCube(GLuint texture, const std::vector<const CubeMap*>& levels) {
@@ -261,7 +358,8 @@ bool Renderer::initialize(std::string* error) {
     impl_->backgroundProgram =
         buildProgram(":/mipgloss/shaders/fullscreen.vert", ":/mipgloss/shaders/background.frag", error);
     impl_->toneProgram = buildProgram(":/mipgloss/shaders/fullscreen.vert", ":/mipgloss/shaders/tonemap.frag", error);
-    if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram) {
+    impl_->aovProgram = buildProgram(":/mipgloss/shaders/object.vert", ":/mipgloss/shaders/aov.frag", error);
+    if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram) {
         impl_->gl = nullptr;
         return false;
     }
@@ -270,12 +368,22 @@ bool Renderer::initialize(std::string* error) {
     // Filtering across cube faces (the paper's seams, §5) is the GPU's job from here on.
     gl->glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl->glGenTextures(1, &impl_->environmentTexture);
+    gl->glGenTextures(1, &impl_->mirrorTexture);
     gl->glGenTextures(1, &impl_->irradianceTexture);
-    impl_->objectProgram->bind();
-    impl_->objectProgram->setUniformValue("uEnvironment", 0);
-    impl_->objectProgram->setUniformValue("uIrradiance", 1);
+    for (QOpenGLShaderProgram* program : {impl_->objectProgram.get(), impl_->aovProgram.get()}) {
+        program->bind();
+        program->setUniformValue("uEnvironment", 0);
+        program->setUniformValue("uIrradiance", 1);
+        program->setUniformValue("uLobe", 2);
+    }
     impl_->backgroundProgram->bind();
     impl_->backgroundProgram->setUniformValue("uEnvironment", 0);
+    impl_->backgroundProgram->setUniformValue("uLobe", 2);
+    gl->glGenSamplers(1, &impl_->lobeSampler);
+    gl->glSamplerParameteri(impl_->lobeSampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl->glSamplerParameteri(impl_->lobeSampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        gl->glSamplerParameteri(impl_->lobeSampler, wrap, GL_CLAMP_TO_EDGE);
     impl_->toneProgram->bind();
     impl_->toneProgram->setUniformValue("uHdr", 0);
     impl_->toneProgram->release();
@@ -289,13 +397,18 @@ void Renderer::destroy() {
     d.meshes.clear();
     for (auto& [key, s] : d.samplers) d.gl->glDeleteSamplers(1, &s);
     d.samplers.clear();
+    for (auto& [key, lobe] : d.lobes) d.gl->glDeleteTextures(1, &lobe.texture);
+    d.lobes.clear();
+    d.gl->glDeleteSamplers(1, &d.lobeSampler);
     d.releaseTargets();
     d.gl->glDeleteTextures(1, &d.environmentTexture);
+    d.gl->glDeleteTextures(1, &d.mirrorTexture);
     d.gl->glDeleteTextures(1, &d.irradianceTexture);
     d.gl->glDeleteVertexArrays(1, &d.emptyVao);
     d.objectProgram.reset();
     d.backgroundProgram.reset();
     d.toneProgram.reset();
+    d.aovProgram.reset();
     d.environment.reset();
     d.gl = nullptr;
 }
@@ -306,10 +419,18 @@ void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& 
     // The chain is uploaded only when it is a different chain (a new irradiance map alone
     // uploads just that).
     if (!d.environment || d.environment->chain != environment->chain) {
+        // Only the levels the renderer reads (phong.h): smaller ones cannot hold a lobe under
+        // bilinear reads, and GL_TEXTURE_MAX_LEVEL keeps the GPU from reaching past the last.
         std::vector<const CubeMap*> levels;
-        for (const CubeMap& level : environment->chain->levels) levels.push_back(&level);
+        const int last = std::min(lastReadLevel(environment->chain->baseSize()), environment->chain->levelCount() - 1);
+        for (int k = 0; k <= last; ++k) levels.push_back(&environment->chain->levels[static_cast<std::size_t>(k)]);
         d.uploadCube(d.environmentTexture, levels);
-        d.environmentLevels = environment->chain->levelCount();
+        d.environmentLevels = static_cast<int>(levels.size());
+        d.uploadCube(d.mirrorTexture, {levels.front()});
+        d.gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.mirrorTexture);
+        d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 1000);
+        d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        d.gl->glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
         d.environmentFaceSize = environment->chain->baseSize();
         ++d.counters.chainUploads;
     }
@@ -348,6 +469,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     gl->glEnable(GL_MULTISAMPLE);
 
     d.counters.objectsDrawn = d.counters.objectsCulled = d.counters.drawCalls = 0;
+    d.counters.objectsSettled = d.counters.objectsFromChain = 0;
     const bool haveEnvironment = hasEnvironment();
     if (haveEnvironment) {
         gl->glActiveTexture(GL_TEXTURE1);
@@ -356,49 +478,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         gl->glActiveTexture(GL_TEXTURE0);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
 
-        QOpenGLShaderProgram& program = *d.objectProgram;
-        program.bind();
-        const glm::vec3 eye = camera.position();
-        gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
-                               glm::value_ptr(viewProjection));
-        gl->glUniformMatrix3fv(program.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
-                               glm::value_ptr(envRotation));
-        gl->glUniform3fv(program.uniformLocation("uCameraPosition"), 1, glm::value_ptr(eye));
-        const int locModel = program.uniformLocation("uModel");
-        const int locNormal = program.uniformLocation("uNormalMatrix");
-        const int locTint = program.uniformLocation("uTint");
-        const int locLookup = program.uniformLocation("uLookup");
-        const int locGrazing = program.uniformLocation("uSharperAtGrazing");
-        const int locLambda = program.uniformLocation("uLambda");
-        const bool irradianceReady = d.uploadedIrradiance != nullptr;
-
-        for (const SceneObject& object : scene.objects) {
-            if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
-            if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
-                ++d.counters.objectsCulled;
-                continue;
-            }
-            const GpuMesh& mesh = d.gpuMesh(object.mesh);
-            const Material& m = object.material;
-            const float lambda = static_cast<float>(clampLambda(m.lambda, d.environmentLevels));
-            int lookup = m.mode == LookupMode::Reflect ? 0 : 1;
-            if (lookup == 1 && m.useIrradiance && irradianceReady) lookup = 2;
-            const glm::mat4 model = object.transform.matrix();
-            const glm::mat3 rotation =
-                glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
-            gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
-            gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
-            gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
-            gl->glUniform1i(locLookup, lookup);
-            gl->glUniform1i(locGrazing, m.sharperAtGrazing && lookup != 2 ? 1 : 0);
-            gl->glUniform1f(locLambda, lambda);
-            // The paper's one statement per object: the sampler holding MIN_LOD = λ.
-            gl->glBindSampler(0, d.sampler(m.sharperAtGrazing ? 0.0f : lambda));
-            gl->glBindVertexArray(mesh.vao);
-            gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
-            ++d.counters.objectsDrawn;
-            ++d.counters.drawCalls;
-        }
+        d.drawObjects(*d.objectProgram, scene, camera.position(), viewProjection, envRotation, frustum, false);
 
         if (scene.display.showBackground) {
             // Drawn last at the far plane, so covered pixels are never shaded.
@@ -409,8 +489,17 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
                                    glm::value_ptr(glm::inverse(rotationOnly)));
             gl->glUniformMatrix3fv(bg.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
                                    glm::value_ptr(envRotation));
-            gl->glUniform1f(bg.uniformLocation("uLod"),
-                            static_cast<float>(clampLambda(scene.display.backgroundLambda, d.environmentLevels)));
+            const float backgroundLambda = scene.display.backgroundLambda;
+            const Impl::GpuLobe* lobe = backgroundLambda > 0.0f ? d.lobeFor(backgroundLambda) : nullptr;
+            gl->glUniform1f(bg.uniformLocation("uLod"), d.chainLevel(backgroundLambda));
+            gl->glUniform1i(bg.uniformLocation("uUseLobe"), lobe ? 1 : 0);
+            if (lobe) {
+                gl->glActiveTexture(GL_TEXTURE2);
+                gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe->texture);
+                gl->glBindSampler(2, d.lobeSampler);
+                gl->glActiveTexture(GL_TEXTURE0);
+            }
+            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
             gl->glBindSampler(0, d.sampler(0.0f));
             gl->glDepthFunc(GL_LEQUAL);
             gl->glDepthMask(GL_FALSE);
@@ -442,6 +531,122 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     gl->glBindVertexArray(0);
     tone.release();
     ++d.counters.frames;
+}
+
+void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
+    Impl& d = *impl_;
+    if (!d.gl) return;
+    std::map<int, std::shared_ptr<const LobeCube>> wanted;
+    for (const auto& lobe : lobes)
+        if (lobe && lobe->cube) wanted[lobe->key] = lobe;
+    for (auto it = d.lobes.begin(); it != d.lobes.end();) {
+        const auto w = wanted.find(it->first);
+        if (w == wanted.end() || w->second != it->second.source) {
+            d.gl->glDeleteTextures(1, &it->second.texture);
+            it = d.lobes.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    for (const auto& [key, lobe] : wanted) {
+        if (d.lobes.count(key)) continue;
+        Impl::GpuLobe g;
+        g.source = lobe;
+        d.gl->glGenTextures(1, &g.texture);
+        d.uploadCube(g.texture, {lobe->cube.get()});
+        // Its own box mips: a far object's footprint widens the lobe the way mipmapping widens
+        // the chain (and the AOV then calls such pixels not exact).
+        d.gl->glBindTexture(GL_TEXTURE_CUBE_MAP, g.texture);
+        d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 1000);
+        d.gl->glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+        d.lobes.emplace(key, g);
+        ++d.counters.lobeUploads;
+    }
+    d.counters.lobesResident = d.lobes.size();
+}
+
+AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height) {
+    Impl& d = *impl_;
+    AovImage aov;
+    if (!d.gl || width <= 0 || height <= 0 || !hasEnvironment()) return aov;
+    auto* gl = d.gl;
+    d.collectMeshes();
+    // A single-sample float target of two colours and depth, made for this call.
+    GLuint fbo = 0, colour[2] = {0, 0}, depth = 0;
+    gl->glGenFramebuffers(1, &fbo);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl->glGenTextures(2, colour);
+    for (int i = 0; i < 2; ++i) {
+        gl->glBindTexture(GL_TEXTURE_2D, colour[i]);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), GL_TEXTURE_2D,
+                                   colour[i], 0);
+    }
+    gl->glGenRenderbuffers(1, &depth);
+    gl->glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    gl->glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl->glDrawBuffers(2, buffers);
+    gl->glViewport(0, 0, width, height);
+    gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDisable(GL_CULL_FACE);
+
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const glm::mat4 viewProjection = camera.projection(aspect, sceneBounds(scene)) * camera.view();
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.irradianceTexture);
+    gl->glBindSampler(1, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
+    d.drawObjects(*d.aovProgram, scene, camera.position(), viewProjection,
+                  environmentRotation(scene.environment.rotationDegrees),
+                  Frustum::fromViewProjection(viewProjection), true);
+    gl->glBindSampler(0, 0);
+
+    const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<glm::vec4> first(count), second(count);
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl->glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, first.data());
+    gl->glReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl->glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, second.data());
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->glDeleteFramebuffers(1, &fbo);
+    gl->glDeleteTextures(2, colour);
+    gl->glDeleteRenderbuffers(1, &depth);
+
+    aov.width = width;
+    aov.height = height;
+    aov.direction.resize(count);
+    aov.exponent.resize(count);
+    aov.exact.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        aov.direction[i] = glm::vec3(first[i]);
+        aov.exponent[i] = first[i].w;
+        aov.exact[i] = second[i].x;
+    }
+    // A pixel beside the background or another lobe is not one lobe at one direction in the
+    // picture (multisampling mixes them): not exact.
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x);
+            if (aov.exact[i] == 0.0f) continue;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    const bool inside = nx >= 0 && ny >= 0 && nx < width && ny < height;
+                    const float e = inside ? first[static_cast<std::size_t>(ny) * width + static_cast<std::size_t>(nx)].w : 0.0f;
+                    if (e != first[i].w) aov.exact[i] = 0.0f;
+                }
+        }
+    return aov;
 }
 
 std::vector<glm::vec4> Renderer::readHdr(int& width, int& height) {

@@ -25,6 +25,7 @@ Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QW
     // On demand: any change that can alter the picture asks for one frame.
     connect(document_, &SceneDocument::changed, this, qOverload<>(&QWidget::update));
     connect(environments_, &EnvironmentManager::environmentReady, this, qOverload<>(&QWidget::update));
+    connect(environments_, &EnvironmentManager::lobesReady, this, qOverload<>(&QWidget::update));
     connect(document_, &SceneDocument::objectsChanged, this, [this] {
         if (document_->objectCount() > 0 && !framedOnce_) frameAll();
     });
@@ -60,6 +61,7 @@ void Viewport::paintGL() {
     if (!renderer_->isInitialized()) return;
     if (!framedOnce_ && document_->objectCount() > 0) frameAll();
     renderer_->setEnvironment(environments_->current());
+    renderer_->setLobes(environments_->lobes());
     const qreal ratio = devicePixelRatio();
     const int w = static_cast<int>(std::lround(width() * ratio));
     const int h = static_cast<int>(std::lround(height() * ratio));
@@ -80,12 +82,14 @@ void Viewport::paintGL() {
         painter.setFont(QFont(QStringLiteral("monospace"), 9));
         const QString text =
             QStringLiteral("frames %1  drawn %2  culled %3\nbuilds %4  irradiance %5  imports %6\n"
-                           "chain uploads %7  mesh uploads %8  samplers %9")
+                           "chain uploads %7  mesh uploads %8  samplers %9\n"
+                           "lobe cubes built %10  on GPU %11\nsettled (own lobe) %12  from the chain %13")
                 .arg(c.frames).arg(c.objectsDrawn).arg(c.objectsCulled)
                 .arg(e.chainBuilds).arg(e.irradianceBuilds).arg(e.imports)
-                .arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated);
-        painter.fillRect(QRect(6, 6, 330, 52), QColor(0, 0, 0, 140));
-        painter.drawText(QRect(12, 8, 320, 50), Qt::AlignLeft | Qt::AlignTop, text);
+                .arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated)
+                .arg(e.lobeBuilds).arg(c.lobesResident).arg(c.objectsSettled).arg(c.objectsFromChain);
+        painter.fillRect(QRect(6, 6, 330, 84), QColor(0, 0, 0, 140));
+        painter.drawText(QRect(12, 8, 320, 82), Qt::AlignLeft | Qt::AlignTop, text);
     }
     emit frameDrawn(renderer_->counters().frames);
 }

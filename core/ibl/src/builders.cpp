@@ -15,12 +15,17 @@ namespace mipgloss {
 
 namespace {
 
-// Levels 1..kFinerLevels filter the base; level k > kFinerLevels filters the energy pyramid at
-// level k - kFinerLevels, whose texels are 8× smaller than level k's (0.34 σ of its lobe), so
-// treating each as a point at its energy centroid costs well under 1 % (README, bench).
-constexpr int kFinerLevels = 3;
-// The default builder's lobe cut: the tail beyond it holds 1e-6 of the lobe's energy.
-constexpr double kPhongCutoff = 1e-6;
+// The default builder's lobe cut: (R·ω)^n below 1e-3 of the peak is left out. For the lobes the
+// schedule uses (Gaussian-like, σ ≈ 3.6 texels) the tail beyond holds about 1e-3 of the lobe's
+// energy, and the weights are normalized over what is kept, so a constant stays exact and the
+// rest moves by at most 0.1 % of the local contrast (docs/chain-schedule.md).
+constexpr double kPhongCutoff = 1e-3;
+// The pyramid's coarsest useful level, and the lobe cubes' size limits.
+constexpr int kMinSourceSize = 64;
+constexpr int kMinLobeCubeSize = 8;
+constexpr int kMaxLobeCubeSize = 1024;
+// Faces from this size on are filtered at half size and interpolated (PhongFilter::filter).
+constexpr int kUpsampleFromSize = 256;
 
 // Weights of an area-proportional box from `from` texels to `to` texels along one axis:
 // destination texel d covers [d·from/to, (d+1)·from/to) of the source.
@@ -86,8 +91,8 @@ private:
     const mipgloss::Progress& fn_;
 };
 
-bool filtered(const BuildOptions& o, int level) {
-    return o.lastFilteredLevel < 0 || level <= o.lastFilteredLevel;
+bool filtered(const BuildOptions& o, int baseSize, int level) {
+    return level <= lastReadLevel(baseSize) && (o.lastFilteredLevel < 0 || level <= o.lastFilteredLevel);
 }
 
 CubeMap seamlessCopy(const CubeMap& c) {
@@ -96,14 +101,6 @@ CubeMap seamlessCopy(const CubeMap& c) {
     return copy;
 }
 
-int powerOfTwoFactor(int n) {
-    int k = 0;
-    while (n > 0 && n % 2 == 0) {
-        n /= 2;
-        ++k;
-    }
-    return k;
-}
 
 }  // namespace
 
@@ -221,7 +218,7 @@ MipChain buildConvolvedChain(const CubeMap& base, const BuildOptions& options, F
     chain.levels.push_back(seamlessCopy(base));
     for (int k = 1; k < levels; ++k) {
         progress.report(static_cast<float>(k - 1) / static_cast<float>(levels - 1));
-        chain.levels.push_back(filtered(options, k) ? filterLevel(k)
+        chain.levels.push_back(filtered(options, n, k) ? filterLevel(k)
                                                     : boxDownsample(chain.levels.back(), levelSize(n, k)));
     }
     progress.report(1.0f);
@@ -250,26 +247,74 @@ MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {
     return buildConvolvedChain(base, boxOnly, [](int) -> CubeMap { return {}; });
 }
 
+struct PhongFilter::Impl {
+    int baseSize = 0;
+    std::vector<detail::LobeSource> sources;  // the energy pyramid, finest first
+};
+
+PhongFilter::PhongFilter(const CubeMap& base) : impl_(std::make_unique<Impl>()) {
+    impl_->baseSize = base.size();
+    impl_->sources.push_back(detail::baseSource(base));
+    // The pyramid needs exact 2×2 nesting: a non-power-of-two base coarsens only while its size
+    // stays even, and lobes then filter that finer (slower, as exact) source. No level below
+    // kMinSourceSize is made: filter() never uses one.
+    while (impl_->sources.back().size % 2 == 0 && impl_->sources.back().size / 2 >= kMinSourceSize)
+        impl_->sources.push_back(detail::coarsenSource(impl_->sources.back()));
+}
+
+PhongFilter::~PhongFilter() = default;
+
+int PhongFilter::baseSize() const { return impl_->baseSize; }
+
+CubeMap PhongFilter::filter(double exponent, int size) const {
+    // The coarsest pyramid level whose texels are at most about half the lobe's σ (a face of
+    // √(8n) texels: 1.57/√(8n) rad = 0.55 σ), and never below 64²: measured in
+    // docs/chain-schedule.md, these sources cost under 0.3 % of the between-centres error.
+    const double wanted = std::max(static_cast<double>(kMinSourceSize), std::ceil(std::sqrt(8.0 * exponent)));
+    std::size_t j = 0;
+    while (j + 1 < impl_->sources.size() && impl_->sources[j + 1].size >= wanted) ++j;
+    // Large faces are filtered at half size and interpolated (σ = 3.6 texels at the level is 1.8
+    // at half size, sampled far above its Nyquist rate); smaller ones directly.
+    if (size >= kUpsampleFromSize && size % 2 == 0)
+        return detail::convolveUpsampled(impl_->sources[j], exponent, size, kPhongCutoff);
+    return detail::convolve(impl_->sources[j], exponent, size, kPhongCutoff);
+}
+
+int lobeCubeSize(double exponent, int baseSize) {
+    const int cap = std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize);
+    const double wanted = std::ceil(std::sqrt(32.0 * std::max(exponent, 0.0)));
+    return static_cast<int>(std::clamp(wanted, static_cast<double>(kMinLobeCubeSize), static_cast<double>(std::max(cap, kMinLobeCubeSize))));
+}
+
+bool lobeCubeHoldsLobe(double exponent, int baseSize) {
+    const int cap = std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize);
+    return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= cap;
+}
+
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
     const int n = base.size();
-    // The pyramid needs exact 2×2 nesting; a non-power-of-two base coarsens only as far as its
-    // size stays even, and deeper levels then filter that (finer, slower, exact) source.
-    const int deepestSource = powerOfTwoFactor(n);
-    std::vector<detail::LobeSource> sources;
-    sources.push_back(detail::baseSource(base));
+    std::unique_ptr<PhongFilter> filter;  // made on the first filtered level
     return buildConvolvedChain(base, options, [&](int k) {
-        const int s = std::min({std::max(0, k - kFinerLevels), deepestSource, k});
-        while (static_cast<int>(sources.size()) <= s) sources.push_back(detail::coarsenSource(sources.back()));
-        return detail::convolve(sources[static_cast<std::size_t>(s)], lambdaToExponent(k, n), levelSize(n, k),
-                                kPhongCutoff);
+        if (!filter) filter = std::make_unique<PhongFilter>(base);
+        return filter->filter(levelExponent(n, k), levelSize(n, k));
     });
 }
 
 MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options) {
     const int n = base.size();
     return buildConvolvedChain(base, options, [&](int k) {
-        return referenceConvolution(base, lambdaToExponent(k, n), levelSize(n, k));
+        return referenceConvolution(base, levelExponent(n, k), levelSize(n, k));
     });
+}
+
+std::vector<Rgb> referenceLobeAt(const CubeMap& base, double exponent, const std::vector<glm::vec3>& directions,
+                                 double cutoff) {
+    const detail::ExactLobe lobe(base, exponent, cutoff);
+    std::vector<Rgb> out(directions.size());
+    parallelFor(0, static_cast<int>(directions.size()), [&](int i) {
+        out[static_cast<std::size_t>(i)] = lobe.at(glm::dvec3(directions[static_cast<std::size_t>(i)]));
+    });
+    return out;
 }
 
 CubeMap referenceConvolution(const CubeMap& base, double exponent, int outSize, double cutoff) {

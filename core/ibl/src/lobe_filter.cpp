@@ -132,16 +132,27 @@ float halfSquaredDistance(const glm::vec3& a, const glm::vec3& b) {
 // Output texels are processed in tiles of kTile×kTile: the node walk runs once per tile with the
 // cap widened by the tile's own angular radius, and each texel then tests the collected nodes'
 // cones against its own cap (one dot product each) before touching their texels.
-constexpr int kTile = 4;
+constexpr int kTile = 8;
 
-template <bool kSeparateGeometry>
-void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, CubeMap& out, int tile) {
-    const int m = out.size();
-    const int tilesPerSide = (m + kTile - 1) / kTile;
+// What a tile pass sums: at the base, energy and solid angle sit at one point, so one weight serves
+// both (Combined). On a coarser level they sit at different points: the energy pass reads
+// `denominators` made by a geometry pass over face +X only. The solid-angle sum Σ w(R·g)·Ω is the
+// same at the matching texel of every face, because the cube's symmetries map face +X's output
+// texels onto every face's and the source grid (identical in each face's frame, and symmetric
+// under the square's own symmetries) onto itself.
+enum class Pass { Combined, Energy, Geometry };
+
+template <Pass kPass>
+void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, FaceGrid& out, int tile,
+                  std::vector<double>& denominators) {
+    const int m = out.size;
+    const int b = out.border;
+    const int extent = out.extent();
+    const int tilesPerSide = (extent + kTile - 1) / kTile;
     const Face fo = static_cast<Face>(tile / (tilesPerSide * tilesPerSide));
     const int local = tile % (tilesPerSide * tilesPerSide);
-    const int x0 = (local % tilesPerSide) * kTile, y0 = (local / tilesPerSide) * kTile;
-    const int x1 = std::min(m, x0 + kTile), y1 = std::min(m, y0 + kTile);
+    const int x0 = (local % tilesPerSide) * kTile - b, y0 = (local / tilesPerSide) * kTile - b;
+    const int x1 = std::min(m + b, x0 + kTile), y1 = std::min(m + b, y0 + kTile);
     const float invM = 1.0f / static_cast<float>(m);
     const glm::vec3 centre = faceToDirection(fo, 0.5f * static_cast<float>(x0 + x1) * invM,
                                              0.5f * static_cast<float>(y0 + y1) * invM);
@@ -164,7 +175,8 @@ void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, 
     const float xmax = table.xmax();
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
-            const glm::vec3 r = texelDirection(fo, x, y, m);
+            const glm::vec3 r = faceToDirection(fo, (static_cast<float>(x) + 0.5f) * invM,
+                                                (static_cast<float>(y) + 0.5f) * invM);
             std::array<glm::vec3, 6> rl;
             for (Face f : kAllFaces) rl[static_cast<std::size_t>(f)] = toLocal(r, f);
             glm::dvec3 acc(0.0);
@@ -185,12 +197,14 @@ void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, 
                                                  static_cast<std::size_t>(nx * group);
                     for (int i = 0; i < group; ++i) {
                         const std::size_t k = rowStart + static_cast<std::size_t>(i);
-                        const float xg = halfSquaredDistance(rf, src.geoDir[k]);
-                        if constexpr (kSeparateGeometry) {
+                        if constexpr (kPass == Pass::Energy) {
                             const float xe = halfSquaredDistance(rf, src.energyDir[fi][k]);
                             if (xe < xmax) faccE += table(xe) * energy[k];
+                        } else if constexpr (kPass == Pass::Geometry) {
+                            const float xg = halfSquaredDistance(rf, src.geoDir[k]);
                             if (xg < xmax) fw += table(xg) * src.omega[k];
                         } else {
+                            const float xg = halfSquaredDistance(rf, src.geoDir[k]);
                             if (xg < xmax) {
                                 const float w = table(xg);
                                 faccE += w * energy[k];
@@ -202,6 +216,12 @@ void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, 
                 acc += glm::dvec3(faccE);
                 wsum += static_cast<double>(fw);
             }
+            const std::size_t texel = out.index(x, y);
+            if constexpr (kPass == Pass::Geometry) {
+                denominators[texel] = wsum;
+                continue;
+            }
+            if constexpr (kPass == Pass::Energy) wsum = denominators[texel];
             Rgb value;
             if (wsum > 0.0) {
                 value = Rgb(acc / wsum);
@@ -214,6 +234,34 @@ void convolveTile(const LobeSource& src, const WeightTable& table, float alpha, 
             out.at(fo, x, y) = value;
         }
     }
+}
+
+// Cubic B-spline weights (1−t)³/6, (3t³−6t²+4)/6, (−3t³+3t²+3t+1)/6, t³/6 for the two phases of
+// a 2× upsampling: output texel centres fall at t = 0.75 (even outputs) and t = 0.25 (odd ones)
+// between grid texels i and i + 1. All positive: no ringing from the evaluation itself.
+constexpr std::array<std::array<float, 4>, 2> kCubicBSpline{{
+    {1.0f / 384.0f, 121.0f / 384.0f, 235.0f / 384.0f, 27.0f / 384.0f},  // t = 0.75
+    {27.0f / 384.0f, 235.0f / 384.0f, 121.0f / 384.0f, 1.0f / 384.0f},  // t = 0.25
+}};
+
+// Interpolating cubic B-spline coefficients along one line (stride apart): solves
+// (c[i-1] + 4 c[i] + c[i+1]) / 6 = v[i] by the Thomas algorithm, the line's ends taken as
+// c = 0 beyond them. The error that assumption makes decays by 2 − √3 ≈ 0.27 per texel inward,
+// so a border of 6 texels leaves under 4e-4 of it on the face (Unser 1999, "Splines: a perfect
+// fit for signal and image processing").
+void bsplineCoefficients(Rgb* v, int count, std::ptrdiff_t stride, std::vector<float>& scratch) {
+    scratch.resize(static_cast<std::size_t>(count));
+    // Forward sweep with the constant diagonals 1/6, 4/6, 1/6 (in units of 1/6: 1, 4, 1).
+    float cp = 1.0f / 4.0f;
+    scratch[0] = cp;
+    v[0] = v[0] * (6.0f / 4.0f);
+    for (int i = 1; i < count; ++i) {
+        const float m = 4.0f - cp;
+        cp = 1.0f / m;
+        scratch[static_cast<std::size_t>(i)] = cp;
+        v[i * stride] = (6.0f * v[i * stride] - v[(i - 1) * stride]) / m;
+    }
+    for (int i = count - 2; i >= 0; --i) v[i * stride] -= scratch[static_cast<std::size_t>(i)] * v[(i + 1) * stride];
 }
 
 }  // namespace
@@ -349,20 +397,74 @@ double supportCosine(double exponent, double cutoff) {
     return std::exp(std::log(cutoff) / exponent);
 }
 
-CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff) {
+FaceGrid convolveGrid(const LobeSource& src, double exponent, int size, int border, double cutoff) {
     const double cmin = supportCosine(exponent, cutoff);
     // 1 - cmin without cancellation for huge exponents.
     const double xmax = exponent <= 0.0 ? 1.0 : -std::expm1(std::log(cutoff) / exponent);
     const WeightTable table(exponent, xmax);
     const float alpha = static_cast<float>(std::acos(cmin));
-    CubeMap out(outSize);
+    FaceGrid out(size, border);
     const bool separate = !src.energyDir[0].empty();
-    const int tilesPerSide = (outSize + kTile - 1) / kTile;
-    parallelFor(0, 6 * tilesPerSide * tilesPerSide, [&](int tile) {
+    const int tilesPerSide = (out.extent() + kTile - 1) / kTile;
+    const int tilesPerFace = tilesPerSide * tilesPerSide;
+    std::vector<double> denominators(static_cast<std::size_t>(out.extent()) * static_cast<std::size_t>(out.extent()));
+    if (separate)  // face +X's tiles come first: the geometry pass covers exactly them
+        parallelFor(0, tilesPerFace, [&](int tile) {
+            convolveTile<Pass::Geometry>(src, table, alpha, out, tile, denominators);
+        });
+    parallelFor(0, 6 * tilesPerFace, [&](int tile) {
         if (separate)
-            convolveTile<true>(src, table, alpha, out, tile);
+            convolveTile<Pass::Energy>(src, table, alpha, out, tile, denominators);
         else
-            convolveTile<false>(src, table, alpha, out, tile);
+            convolveTile<Pass::Combined>(src, table, alpha, out, tile, denominators);
+    });
+    return out;
+}
+
+CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff) {
+    const FaceGrid grid = convolveGrid(src, exponent, outSize, 0, cutoff);
+    CubeMap out(outSize);
+    for (Face f : kAllFaces)
+        for (int y = 0; y < outSize; ++y)
+            for (int x = 0; x < outSize; ++x) out.at(f, x, y) = grid.at(f, x, y);
+    out.makeSeamless();
+    return out;
+}
+
+CubeMap convolveUpsampled(const LobeSource& src, double exponent, int outSize, double cutoff) {
+    assert(outSize % 2 == 0);
+    const int m = outSize / 2;
+    // The border values are the filter evaluated on the face's plane extended past its edges, so
+    // the grid is smooth across them (no kink where the faces meet); six texels of it keep the
+    // spline's end conditions away from the face (bsplineCoefficients).
+    constexpr int kBorder = 6;
+    FaceGrid grid = convolveGrid(src, exponent, m, kBorder, cutoff);
+    const int e = grid.extent();
+    parallelFor(0, 6, [&](int fi) {
+        std::vector<float> scratch;
+        Rgb* v = grid.values[static_cast<std::size_t>(fi)].data();
+        for (int y = 0; y < e; ++y) bsplineCoefficients(v + static_cast<std::ptrdiff_t>(y) * e, e, 1, scratch);
+        for (int x = 0; x < e; ++x) bsplineCoefficients(v + x, e, e, scratch);
+    });
+    CubeMap out(outSize);
+    parallelFor(0, 6 * outSize, [&](int row) {
+        const Face f = kAllFaces[static_cast<std::size_t>(row / outSize)];
+        const int y = row % outSize;
+        // Output centre (y + 0.5)/outSize on the face is grid coordinate y/2 - 0.25.
+        const int gy = (y - (y % 2 == 0 ? 2 : 1)) / 2;  // the grid texel before it
+        const auto& wy = kCubicBSpline[static_cast<std::size_t>(y % 2)];
+        for (int x = 0; x < outSize; ++x) {
+            const int gx = (x - (x % 2 == 0 ? 2 : 1)) / 2;
+            const auto& wx = kCubicBSpline[static_cast<std::size_t>(x % 2)];
+            Rgb v(0.0f);
+            for (int j = 0; j < 4; ++j) {
+                Rgb rowSum(0.0f);
+                for (int i = 0; i < 4; ++i) rowSum += wx[static_cast<std::size_t>(i)] * grid.at(f, gx - 1 + i, gy - 1 + j);
+                v += wy[static_cast<std::size_t>(j)] * rowSum;
+            }
+            // An interpolating spline may overshoot beside a sharp peak; radiance is never negative.
+            out.at(f, x, y) = glm::max(v, Rgb(0.0f));
+        }
     });
     out.makeSeamless();
     return out;

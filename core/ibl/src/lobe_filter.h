@@ -58,10 +58,37 @@ LobeSource coarsenSource(const LobeSource& fine);
 // Lobe support: the cosine below which (R·ω)^n < cutoff.
 double supportCosine(double exponent, double cutoff);
 
+// Values on each face's texel grid of `size`, extended by `border` texels on every side onto the
+// face's own plane beyond its edges (index -border .. size+border-1).
+struct FaceGrid {
+    FaceGrid(int s, int b) : size(s), border(b) {
+        for (auto& f : values) f.resize(static_cast<std::size_t>(extent()) * static_cast<std::size_t>(extent()));
+    }
+    int size;
+    int border;
+    std::array<std::vector<Rgb>, 6> values;
+    int extent() const { return size + 2 * border; }
+    std::size_t index(int x, int y) const {
+        return static_cast<std::size_t>(y + border) * static_cast<std::size_t>(extent()) +
+               static_cast<std::size_t>(x + border);
+    }
+    Rgb& at(Face f, int x, int y) { return values[static_cast<std::size_t>(f)][index(x, y)]; }
+    const Rgb& at(Face f, int x, int y) const { return values[static_cast<std::size_t>(f)][index(x, y)]; }
+};
+
 // Normalized Phong convolution of `src` at exponent n, evaluated at the texel centres of a
-// face of size outSize: Σ w(R·e)·E / Σ w(R·g)·Ω with w = (R·ω)^n cut at `cutoff` (float weights
-// from a table, double sums). Borders of the result are filled.
+// face grid of `size` (with `border`): Σ w(R·e)·E / Σ w(R·g)·Ω with w = (R·ω)^n cut at `cutoff`
+// (float weights from a table, double sums).
+FaceGrid convolveGrid(const LobeSource& src, double exponent, int size, int border, double cutoff);
+
+// The same on a cube of outSize, borders filled.
 CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff);
+
+// The same sum evaluated on the half-size grid (with a two-texel border beyond the face edges)
+// and brought to outSize (even) by cubic B-spline interpolation, clamped at 0: a quarter of the
+// cost, for lobes at least 3 output texels wide (σ), whose half-size samples are far above
+// their Nyquist rate (docs/chain-schedule.md measures what it costs).
+CubeMap convolveUpsampled(const LobeSource& src, double exponent, int outSize, double cutoff);
 
 // The exact sum at the base, in double precision with exact weights exp(n·log(R·ω)), at any
 // direction: Σ w(R·ω)·L·Ω / Σ w(R·ω)·Ω over the base texels. Keeps a reference to `base`.

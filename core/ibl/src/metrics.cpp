@@ -2,6 +2,8 @@
 
 #include "mipgloss/ibl/builders.h"
 
+#include <random>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -75,6 +77,48 @@ double fitExponent(const CubeMap& level, const CubeMap& base, double guess) {
         }
     }
     return std::exp(0.5 * (a + b));
+}
+
+std::vector<glm::vec3> uniformDirections(int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> gauss;
+    std::vector<glm::vec3> out;
+    out.reserve(static_cast<std::size_t>(std::max(count, 0)));
+    while (static_cast<int>(out.size()) < count) {
+        const glm::vec3 v(gauss(rng), gauss(rng), gauss(rng));
+        const float len = glm::length(v);
+        if (len > 1e-6f) out.push_back(v / len);  // an isotropic Gaussian, normalized, is uniform
+    }
+    return out;
+}
+
+Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, double lod) {
+    const int last = chain.levelCount() - 1;
+    lod = std::clamp(std::isfinite(lod) ? lod : 0.0, 0.0, static_cast<double>(std::max(last, 0)));
+    const int l0 = static_cast<int>(std::floor(lod));
+    const float f = static_cast<float>(lod - l0);
+    const Rgb a = chain.levels[static_cast<std::size_t>(l0)].sample(direction);
+    if (f <= 0.0f || l0 >= last) return a;
+    const Rgb b = chain.levels[static_cast<std::size_t>(l0 + 1)].sample(direction);
+    return a + f * (b - a);
+}
+
+double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth) {
+    double se = 0.0, sr = 0.0;
+    for (std::size_t i = 0; i < std::min(test.size(), truth.size()); ++i) {
+        const glm::dvec3 d = glm::dvec3(test[i]) - glm::dvec3(truth[i]);
+        se += glm::dot(d, d);
+        sr += glm::dot(glm::dvec3(truth[i]), glm::dvec3(truth[i]));
+    }
+    return sr > 0.0 ? std::sqrt(se / sr) : std::sqrt(se);
+}
+
+double readError(const MipChain& chain, double lod, const CubeMap& base, double exponent,
+                 const std::vector<glm::vec3>& directions) {
+    const std::vector<Rgb> truth = referenceLobeAt(base, exponent, directions);
+    std::vector<Rgb> read(directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) read[i] = sampleChain(chain, directions[i], lod);
+    return relativeRms(read, truth);
 }
 
 }  // namespace mipgloss

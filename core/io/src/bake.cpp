@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <limits>
 #include <sstream>
 #include <system_error>
 
@@ -75,13 +76,22 @@ std::string manifestJson(const BakeSummary& summary, Builder builder, const std:
     o << "  \"face_size\": " << summary.faceSize << ",\n";
     o << "  \"face_order\": [\"px\", \"nx\", \"py\", \"ny\", \"pz\", \"nz\"],\n";
     o << "  \"orientation\": \"OpenGL cube map faces; row 0 of each image is t = 0\",\n";
-    o << "  \"lambda_to_exponent\": \"n = 3 N^2 4^-lambda - 1 (solid-angle matching)\",\n";
+    o << "  \"lambda_to_exponent\": \"n = 3 * 128^2 * 4^-lambda - 1, lambda 0 the mirror (the same at every face size)\",\n";
+    o << "  \"schedule\": \"level k holds n = M^2/32 (M its face size, sigma about 3.6 texels), n = 1 at the last read level\",\n";
     o << "  \"cube_file\": \"" << jsonEscape(summary.cubeFile.filename().string()) << "\",\n";
     o << "  \"levels\": [\n";
     for (std::size_t i = 0; i < summary.levels.size(); ++i) {
         const BakedLevel& l = summary.levels[i];
-        o << "    {\"level\": " << l.level << ", \"size\": " << l.size << ", \"lambda\": " << l.lambda
-          << ", \"phong_exponent\": " << l.phongExponent << ", \"dir\": \"level" << l.level << "\"}"
+        auto number = [](double v) {
+            std::ostringstream t;
+            t.precision(10);
+            if (std::isfinite(v)) t << v;
+            else t << "null";
+            return t.str();
+        };
+        o << "    {\"level\": " << l.level << ", \"size\": " << l.size << ", \"read\": " << (l.read ? "true" : "false")
+          << ", \"phong_exponent\": " << number(l.phongExponent) << ", \"lambda\": " << number(l.lambda)
+          << ", \"dir\": \"level" << l.level << "\"}"
           << (i + 1 < summary.levels.size() ? "," : "") << "\n";
     }
     o << "  ],\n";
@@ -135,8 +145,14 @@ BakeSummary bake(const BakeRequest& request) {
         for (int k = 0; k < chain.levelCount(); ++k) {
             report("write", static_cast<float>(k) / static_cast<float>(chain.levelCount()));
             writeFaceImages(chain.levels[static_cast<std::size_t>(k)], staging / ("level" + std::to_string(k)));
-            summary.levels.push_back({k, chain.levels[static_cast<std::size_t>(k)].size(), static_cast<double>(k),
-                                      lambdaToExponent(k, summary.faceSize)});
+            BakedLevel level;
+            level.level = k;
+            level.size = chain.levels[static_cast<std::size_t>(k)].size();
+            level.read = k <= lastReadLevel(summary.faceSize);
+            level.phongExponent = levelExponent(summary.faceSize, k);
+            level.lambda = level.read ? exponentToLambda(level.phongExponent)
+                                      : std::numeric_limits<double>::quiet_NaN();
+            summary.levels.push_back(level);
         }
         if (request.irradiance) writeFaceImages(irradiance, staging / "irradiance");
         summary.irradiance = request.irradiance;

@@ -1,16 +1,24 @@
 #include "mipgloss/scene/chain_needs.h"
 
 #include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/phong.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace mipgloss {
 
-ChainNeeds chainNeeds(const Scene& scene, int levelCount) {
+ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize) {
     ChainNeeds needs;
-    const int last = std::max(levelCount - 1, 0);
-    float highest = scene.display.showBackground ? scene.display.backgroundLambda : 0.0f;
+    const int last = lastReadLevel(baseFaceSize);
+    // The deepest chain level some lobe in the scene is read at while λ moves (a fractional
+    // level blends floor and floor + 1).
+    double deepest = 0.0;
+    auto reach = [&](float lambda) {
+        const double level = chainLevelForExponent(lambdaToExponent(lambda), baseFaceSize);
+        if (std::isfinite(level)) deepest = std::max(deepest, level);
+    };
+    if (scene.display.showBackground) reach(scene.display.backgroundLambda);
     for (const SceneObject& object : scene.objects) {
         if (!object.visible) continue;
         const Material& m = object.material;
@@ -18,16 +26,12 @@ ChainNeeds chainNeeds(const Scene& scene, int levelCount) {
             needs.irradiance = true;
             continue;  // the irradiance map replaces the chain for this object
         }
-        highest = std::max(highest, m.lambda);
+        reach(m.lambda);
     }
-    // A fractional λ blends floor(λ) and floor(λ) + 1.
-    const float clamped = std::clamp(highest, 0.0f, static_cast<float>(last));
-    needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(clamped)));
+    needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(deepest - 1e-9)));
     return needs;
 }
 
-ChainNeeds needsFor(const Scene& scene, int baseFaceSize) {
-    return chainNeeds(scene, fullChainLevelCount(std::max(baseFaceSize, 1)));
-}
+ChainNeeds needsFor(const Scene& scene, int baseFaceSize) { return chainNeeds(scene, std::max(baseFaceSize, 1)); }
 
 }  // namespace mipgloss

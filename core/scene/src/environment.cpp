@@ -79,6 +79,14 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         out.buildSeconds = secondsSince(start);
     }
 
+    // The filter lobe cubes are made from: kept with the import, made for the default builder.
+    if (settings.builder == Builder::Phong) {
+        if (previous && previous->filter && previous->sameImport(settings))
+            out.filter = previous->filter;
+        else
+            out.filter = std::make_shared<const PhongFilter>(*out.base);
+    }
+
     // 3. Irradiance only when some object reads it; kept once made for this import.
     if (previous && previous->irradiance && previous->sameImport(settings)) {
         out.irradiance = previous->irradiance;

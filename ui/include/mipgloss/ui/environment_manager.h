@@ -1,17 +1,23 @@
 // Keeps the scene's environment ready: imports and builds off the UI thread (one worker, newest
 // request wins, older ones cancelled), while the previous environment stays current and usable.
 // It watches a SceneDocument and asks for exactly what the scene needs (environment.h): a change
-// of λ inside the filtered levels, of mode or of tint builds nothing.
+// of λ inside the filtered levels, of mode or of tint builds nothing. Once the scene's λ values
+// have rested for kSettleMs, it makes the lobe cubes they need (lobes.h) on the same worker, one
+// per lobe in use, so the settled picture shows each material's exact lobe.
 #pragma once
 
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
 
 #include <QObject>
 #include <QString>
+#include <QTimer>
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <vector>
 
 namespace mipgloss::ui {
 
@@ -22,6 +28,7 @@ struct EnvironmentCounters {
     std::uint64_t chainBuilds = 0;       // mip chains built
     std::uint64_t irradianceBuilds = 0;  // irradiance maps computed
     std::uint64_t failures = 0;
+    std::uint64_t lobeBuilds = 0;        // lobe cubes made
 };
 
 class EnvironmentManager : public QObject {
@@ -40,7 +47,12 @@ public:
     // irradiance map comes as a new object, so the renderer uploads only when the pointer changes.
     std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
 
-    bool busy() const { return busy_; }
+    bool busy() const { return busy_ || lobeBusy_; }
+
+    // The lobe cubes made for the current environment (those in use, and a few recent ones).
+    std::vector<std::shared_ptr<const LobeCube>> lobes() const;
+    // How long λ must rest before lobe cubes are made.
+    static constexpr int kSettleMs = 150;
 
     // The settings of the last request that failed. The manager does not retry them by itself (a
     // scene change would otherwise re-read a bad file every time); an explicit open calls
@@ -57,11 +69,14 @@ signals:
     void busyChanged(bool busy);
     void progress(const QString& stage, double fraction);  // from the worker, queued to the UI
     void environmentReady();                                // current() changed
+    void lobesReady();                                      // lobes() changed
     // A file could not be used; `message` names it. The current environment is kept.
     void failed(const QString& message);
 
 private:
     void startJob();
+    void startLobeJob();
+    void scheduleLobes();
     void onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error);
 
     SceneDocument* document_ = nullptr;
@@ -76,6 +91,13 @@ private:
     // Last request that failed, so the same bad file is not retried on every scene change.
     EnvironmentSettings failedSettings_;
     bool haveFailed_ = false;
+    // Lobe cubes of current_ by key; a new environment (a new filter) empties it.
+    std::map<int, std::shared_ptr<const LobeCube>> lobes_;
+    std::shared_ptr<const PhongFilter> lobesFilter_;
+    bool lobeBusy_ = false;
+    bool lobesWanted_ = false;
+    std::shared_ptr<std::atomic<bool>> cancelLobes_;
+    QTimer* settle_ = nullptr;
 };
 
 }  // namespace mipgloss::ui

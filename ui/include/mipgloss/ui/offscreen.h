@@ -25,6 +25,13 @@ public:
     QImage render(const Scene& scene, const OrbitCamera& camera,
                   const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height);
 
+    // The lobe cubes later renders draw settled materials from (Renderer::setLobes).
+    void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
+
+    // The per-pixel account of the same view (Renderer::renderAov).
+    AovImage renderAov(const Scene& scene, const OrbitCamera& camera,
+                       const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height);
+
     // The linear HDR colour of the last render (RGBA, bottom row first); see Renderer::readHdr.
     std::vector<glm::vec4> lastHdr(int& width, int& height);
 

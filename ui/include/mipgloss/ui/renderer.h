@@ -2,10 +2,13 @@
 // only (textures, samplers, buffers, programs) and draws a mipgloss::Scene it is handed.
 //
 // The paper's method (Ashikhmin & Ghosh 2002, §4): the environment is one cube texture holding the
-// whole chain, trilinear filtering, GL_TEXTURE_CUBE_MAP_SEAMLESS on. Each material's λ is a
-// sampler object's GL_TEXTURE_MIN_LOD, so the GPU picks max(λ, footprint LOD): a far, small object
-// still gets the extra blur mipmapping gives it, and a fractional λ blends two levels. Samplers are
-// shared by materials with the same λ; changing λ edits or picks a sampler, nothing is rebuilt.
+// chain's read levels (GL_TEXTURE_MAX_LEVEL = lastReadLevel), trilinear filtering,
+// GL_TEXTURE_CUBE_MAP_SEAMLESS on. A material's λ means one Phong lobe n(λ) (phong.h); while it
+// moves, the object reads the chain at the level standing in for that lobe, held as a sampler
+// object's GL_TEXTURE_MIN_LOD, so the GPU picks max(level, footprint LOD): a far, small object
+// still gets the extra blur mipmapping gives it. Samplers are shared by materials with the same
+// level; changing λ picks a sampler, nothing is rebuilt. Once λ rests and the material's lobe
+// cube has arrived (setLobes), the object reads that instead: the exact lobe (lobes.h).
 //
 // Frame: objects and background into a multisampled RGBA16F target (linear HDR), resolved, then
 // one pass applies exposure, the tone map and the sRGB encoding into the caller's framebuffer.
@@ -14,6 +17,7 @@
 
 #include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/scene.h"
 
 #include <glm/vec4.hpp>
@@ -34,6 +38,18 @@ struct RenderCounters {
     std::uint64_t objectsDrawn = 0;       // in the last frame
     std::uint64_t objectsCulled = 0;      // in the last frame (outside the view frustum)
     std::uint64_t drawCalls = 0;          // in the last frame
+    std::uint64_t lobeUploads = 0;        // lobe cubes sent to the GPU
+    std::uint64_t lobesResident = 0;      // lobe cubes on the GPU now
+    std::uint64_t objectsSettled = 0;     // in the last frame: drawn from their own lobe cube
+    std::uint64_t objectsFromChain = 0;   // in the last frame: blurred, read from the chain
+};
+
+// The per-pixel account of a render (mipgloss render --aov), bottom row first.
+struct AovImage {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> direction;  // unit direction the environment is read at (baked frame)
+    std::vector<float> exponent;       // the lobe shown; 0 where no object, +inf for a mirror
+    std::vector<float> exact;          // 1 where the pixel is meant to equal that lobe there
 };
 
 class Renderer {
@@ -53,9 +69,18 @@ public:
     void setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment);
     bool hasEnvironment() const;
 
+    // The lobe cubes to draw settled materials from (lobes.h): replaces the previous set; cubes
+    // already on the GPU stay, others are uploaded, missing ones are freed. Cubes made from
+    // another environment than the current one are ignored.
+    void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
+
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.
     void render(const Scene& scene, const OrbitCamera& camera, int width, int height,
                 unsigned targetFbo);
+
+    // The same view's per-pixel directions, exponents and exactness (no multisampling; pixels
+    // next to the background or to another lobe are never exact).
+    AovImage renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height);
 
     // The last frame's linear HDR colour (before exposure and tone mapping), bottom row first,
     // RGBA. For the render tests' CPU comparison.

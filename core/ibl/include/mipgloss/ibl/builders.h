@@ -1,26 +1,31 @@
-// Mip-chain builders, selectable by enum (and by name in files and on the command line). Every builder takes a base cube (level 0) and returns a
-// full chain down to 1×1 with seamless (or, for `paper`, its own) borders filled.
+// Mip-chain builders, selectable by enum (and by name in files and on the command line). Every
+// builder takes a base cube (level 0, the mirror) and returns a full chain down to 1×1 with
+// seamless (or, for `paper`, its own) borders filled. Level k holds the lobe the schedule in
+// phong.h declares (levelExponent): σ ≈ 3.6 of its texels, n = 1 at the last read level, box
+// steps below it (never read).
 //
+//   phong      the default: level k is the normalized Phong convolution of the sphere at n_k,
+//              filtered across faces with exact solid angles, from the energy pyramid level whose
+//              texels are about half the lobe's σ (never coarser than 64², so a lobe wider than
+//              the pyramid's texels by far keeps 4 000+ source points); each pyramid texel keeps
+//              its energy at its energy-weighted direction, so a sun stays where it is.
+//              O(N²) for the chain (docs/chain-schedule.md counts the taps and measures the error
+//              of each shortcut).
 //   box        per-face 2×2 box filter: what glGenerateMipmap does. Read through seamless
 //              filtering it shows no step at cube edges (SeamPicture measures it); its defect is
-//              its lobe, far from the Phong lobe its λ declares (docs/builders.md).
+//              its lobe, far from the Phong lobe the schedule declares (docs/builders.md).
 //   paper      Ashikhmin & Ghosh 2002, §3: each face enlarged by its four unfolded neighbours,
 //              corners filled with a copy of a face image (we use the opposite face), repeatedly
 //              box-filtered, the centre cut out with a one-texel border that sampling uses.
-//   phong      the default: level k is the normalized Phong-lobe convolution of the sphere at
-//              n = lambdaToExponent(k, N), filtered across faces with exact solid angles. Levels
-//              1..3 filter the base itself; deeper levels filter an energy-preserving pyramid level
-//              three steps finer that keeps each texel's energy at its energy-weighted direction
-//              (so a sun stays where it is). O(N²) per level; the levels shrink 4× each, so
-//              O(N²) for the chain (docs/builders.md counts the taps).
-//   reference  the exact discrete normalized Phong convolution of the base at every level, in
-//              double precision with the lobe cut at 1e-10 of its peak. Slow; for tests and bench.
+//   reference  the exact discrete normalized Phong convolution of the base at every read level,
+//              in double precision with the lobe cut at 1e-10 of its peak. Slow; tests and bench.
 #pragma once
 
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/ibl/progress.h"
 
 #include <array>
+#include <memory>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -38,7 +43,8 @@ bool parseBuilder(std::string_view text, Builder& out);
 
 struct BuildOptions {
     // Levels above this index are filled by a cheap box filter from the level before instead of
-    // the builder's own filter ("skip what the scene doesn't need"); -1 builds every level.
+    // the builder's own filter ("skip what the scene doesn't need"); -1 builds every read level.
+    // Levels beyond lastReadLevel (phong.h) are box steps whatever this says.
     int lastFilteredLevel = -1;
     // Stage "build"; returning false stops the build with Cancelled (progress.h).
     Progress progress;
@@ -59,9 +65,41 @@ MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options = 
 // below a chain that stops early.
 CubeMap boxDownsample(const CubeMap& level, int size);
 
+// The default builder's machinery, kept for lobes made after the chain: the lobe cube of one
+// material (the settled picture) comes from the same energy pyramid. Built once per base
+// (about a third of the base's size in memory); filter() may run on any thread.
+class PhongFilter {
+public:
+    explicit PhongFilter(const CubeMap& base);
+    ~PhongFilter();
+    PhongFilter(const PhongFilter&) = delete;
+    PhongFilter& operator=(const PhongFilter&) = delete;
+
+    int baseSize() const;
+    // The normalized Phong convolution of the base at `exponent` (>= 0, finite), at the texel
+    // centres of a face of `size`, borders filled.
+    CubeMap filter(double exponent, int size) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// The face size of a lobe cube: large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
+// reads between its centres stay within about 1 % (docs/chain-schedule.md), i.e. ceil(√(32 n)),
+// at least 8 and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
+// more coarsely, and the renderer does not call them exact.
+int lobeCubeSize(double exponent, int baseSize);
+// True when lobeCubeSize holds the lobe at full width (√(32 n) fits under the cap).
+bool lobeCubeHoldsLobe(double exponent, int baseSize);
+
 // Exact discrete normalized Phong convolution of `base` with exponent n, sampled at the texel
 // centres of a face of size `outSize` (double precision, lobe cut at `cutoff` of its peak).
 CubeMap referenceConvolution(const CubeMap& base, double exponent, int outSize,
                              double cutoff = 1e-10);
+
+// The same sum at any directions (need not be normalized): the truth a picture is compared with.
+std::vector<Rgb> referenceLobeAt(const CubeMap& base, double exponent, const std::vector<glm::vec3>& directions,
+                                 double cutoff = 1e-10);
 
 }  // namespace mipgloss

@@ -4,6 +4,8 @@
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/cubemap.h"
 
+#include <vector>
+
 namespace mipgloss {
 
 struct LevelError {
@@ -40,6 +42,24 @@ struct SeamStats {
     double ratio = 0.0;  // edge / inside; 0 when the face is smaller than 2×2
 };
 SeamStats seamStats(const CubeMap& level);
+
+// ---- What the picture sees: reads between texel centres (docs/chain-schedule.md) ----
+
+// `count` directions uniformly distributed on the sphere, from a fixed seed (repeatable).
+std::vector<glm::vec3> uniformDirections(int count, unsigned seed = 1);
+
+// The chain read as the GPU reads it: seamless bilinear within a level, linear between
+// floor(lod) and the next level (lod clamped to the chain).
+Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, double lod);
+
+// Relative RMS over RGB: sqrt(Σ|a−b|²) / sqrt(Σ|b|²) (directions drawn uniformly carry equal
+// weight). `test` and `truth` have the same length.
+double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth);
+
+// The chain read at `lod` at `directions` against the exact normalized Phong convolution of
+// `base` at `exponent` there (referenceLobeAt): relative RMS.
+double readError(const MipChain& chain, double lod, const CubeMap& base, double exponent,
+                 const std::vector<glm::vec3>& directions);
 
 // Exponent n whose exact Phong convolution of `base`, sampled at the texel centres of a face of
 // `level.size()`, best matches `level` in relative RMS (golden-section search on log n within

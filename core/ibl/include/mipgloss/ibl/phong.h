@@ -1,29 +1,55 @@
-// λ (mip level, GL_TEXTURE_MIN_LOD) <-> Phong exponent n: the one place this mapping lives.
+// λ, the artist's knob, and the Phong exponent n it means; the chain's levels and the lobes they
+// hold. The one place for both mappings (derivations and measurements: docs/phong-lobe.md and
+// docs/chain-schedule.md).
 //
-// Derivation (solid-angle matching, McGuire et al. 2013). Level λ of a chain with base face
-// size N has faces of size M = N / 2^λ, so one of its 6·M² texels covers on average
-//     Ω_texel = 4π / (6 M²) = 2π / (3 N² 4^-λ).
-// The normalized Phong lobe D_n(R·ω) = (n+1)/(2π) · max(0, R·ω)^n has peak (n+1)/(2π), so the
-// solid angle it "covers" (its integral over its peak) is
-//     Ω_lobe = 2π / (n + 1).
-// Setting Ω_lobe = Ω_texel: n + 1 = 3 N² 4^-λ, i.e.
-//     λ = log2(N √3) − ½ log2(n + 1),        n = 3 N² 4^-λ − 1.
-// The lobe's angular standard deviation is then about 1/√n ≈ 0.37 of a level-λ texel: a level's
-// texel centres sample its lobe below Nyquist, which is why accuracy is measured at texel centres.
-// Beyond λ = log2(N√3) the formula gives n < 0; the exponent is clamped at 0 (a uniform
-// hemisphere), the blurriest lobe the model has.
+// λ has the paper's meaning at one fixed size, so a material shows the same lobe under any
+// environment and face size: solid-angle matching (McGuire et al. 2013) against a reference cube
+// of face size 128, whose level-λ texels cover on average Ω = 4π / (6·(128/2^λ)²), set equal to
+// the normalized lobe's solid angle 2π/(n+1):
+//     n(λ) = 3·128²·4^−λ − 1,        λ(n) = log2(128·√3) − ½·log2(n + 1),
+// with λ = 0 a true mirror (n = ∞) rather than n = 49151, and n clamped at 0 (a uniform
+// hemisphere) beyond λ = log2(128√3) ≈ 7.79.
+//
+// The chain does not hold n(λ) at level λ: a level holds the lobe it can show between its texel
+// centres (bilinear reads), σ ≈ 3.6 of its texels, n_k = M_k²/32 for a face of M_k ≥ 16 texels,
+// and n = 1 (the diffuse kernel, irradiance/π) at the last level it reads, the first of 8 to 15
+// texels. Smaller levels are never read. The renderer turns a material's n into a fractional
+// chain level (`chainLevelForExponent`) while the user drags, and into a lobe cube of its own
+// (builders.h) once it rests.
 #pragma once
+
+#include <limits>
 
 namespace mipgloss {
 
-// n(λ) for a chain of base face size N. λ may be fractional; the result is >= 0.
-double lambdaToExponent(double lambda, int baseSize);
+inline constexpr int kLambdaReferenceSize = 128;
+inline constexpr double kMirrorExponent = std::numeric_limits<double>::infinity();
 
-// λ(n) for a chain of base face size N; n >= 0 (negative n is treated as 0). Not clamped to the
-// chain: callers that need a level index clamp with `clampLambda`.
-double exponentToLambda(double exponent, int baseSize);
+// n(λ): ∞ for λ <= 0 (mirror), then 3·128²·4^−λ − 1 clamped at 0. NaN gives NaN.
+double lambdaToExponent(double lambda);
+// λ(n): 0 for n = ∞, clamped at 0 for n >= n(0+) and at λ(0) for n <= 0. NaN gives NaN.
+double exponentToLambda(double exponent);
+// λ as files of version 1 meant it: n = 3·N²·4^−λ − 1 against the base face size N they were
+// saved with (clamped at 0). Used only to convert those files.
+double legacyLambdaToExponent(double lambda, int baseSize);
 
-// λ clamped to [0, levelCount-1]; NaN becomes 0.
-double clampLambda(double lambda, int levelCount);
+// Validation for λ from the panel, a file or the command line.
+inline constexpr double kMaxLambda = 8.0;  // n(λ) = 0 from 7.79 on
+bool isValidLambda(double lambda);          // finite and in [0, kMaxLambda]
+bool isValidExponent(double exponent);      // finite and >= 0, or +∞ (the mirror)
+
+// The chain's schedule for a base of face size N (levels follow OpenGL's floor rule).
+// Exponent held by level k: ∞ at 0 (the imported cube, the mirror), M²/32 for faces of M >= 16
+// texels, 1 at the last read level; NaN for levels beyond it (never read).
+double levelExponent(int baseSize, int level);
+// The deepest level the renderer reads: the first with a face of 8–15 texels (0 when N < 16).
+int lastReadLevel(int baseSize);
+// The fractional chain level whose trilinear read is the renderer's stand-in for lobe n while
+// λ moves. Between levels k and k+1 the GPU blends two lobes with weight t; t is chosen so the
+// blend has the lobe's mean cosine (its band-1 factor (n+1)/(n+2), docs/phong-lobe.md):
+//     t = (Λ(n_k) − Λ(n)) / (Λ(n_k) − Λ(n_k+1)),   Λ(n) = (n+1)/(n+2), Λ(∞) = 1,
+// so the blend is as wide as the lobe on average (not the same shape: 5–14 % off it, which the
+// lobe cube of the settled picture removes). 0 for the mirror, lastReadLevel for n <= 1.
+double chainLevelForExponent(double exponent, int baseSize);
 
 }  // namespace mipgloss

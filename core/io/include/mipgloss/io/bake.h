@@ -27,8 +27,11 @@ struct BakeRequest {
 struct BakedLevel {
     int level = 0;
     int size = 0;
-    double lambda = 0.0;
+    // The lobe the level holds (phong.h's schedule): ∞ at level 0 (the mirror), NaN for levels
+    // the previewer never reads; and the artist's λ that means that lobe (NaN when not read).
     double phongExponent = 0.0;
+    double lambda = 0.0;
+    bool read = false;
 };
 
 struct BakeSummary {

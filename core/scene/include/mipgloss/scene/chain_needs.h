@@ -8,20 +8,20 @@
 namespace mipgloss {
 
 // What the environment chain must provide for this scene (renderer and builder agree on it).
-// Levels up to `lastFilteredLevel` are reached through some λ (an object's, or the background's),
-// so they get the builder's lobe filter; deeper levels are reached only by minification of small
-// or distant objects, where the pixel footprint is itself an average, and get the cheap box filter.
+// Levels up to `lastFilteredLevel` are reached through some λ (an object's, or the background's,
+// mapped to the chain by chainLevelForExponent), so they get the builder's lobe filter; deeper
+// levels are reached only by minification of small or distant objects, where the pixel footprint
+// is itself an average, and get the cheap box filter.
 // `irradiance`: some visible object in normal mode asks for the irradiance map.
 struct ChainNeeds {
     int lastFilteredLevel = 0;
     bool irradiance = false;
     bool operator==(const ChainNeeds&) const = default;
 };
-ChainNeeds chainNeeds(const Scene& scene, int levelCount);
+ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize);
 
-// The scene's needs translated for an environment whose chain has `levelCount` levels, rounded
-// up so that small λ moves do not trigger builds: the filtered range only grows in whole levels
-// and, once built, is kept (see prepareEnvironment).
+// The same (a name kept for callers that hold a face size): the filtered range only grows in
+// whole levels and, once built, is kept (see prepareEnvironment).
 ChainNeeds needsFor(const Scene& scene, int baseFaceSize);
 
 }  // namespace mipgloss

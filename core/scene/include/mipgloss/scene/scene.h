@@ -7,6 +7,7 @@
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/io/import.h"
 #include "mipgloss/scene/mesh.h"
 
@@ -26,11 +27,12 @@ enum class ToneMap { Linear, Reinhard, Aces };
 const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces"
 bool parseToneMap(const std::string& text, ToneMap& out);
 
-// λ beyond this is clamped everywhere (clampLambda in phong.h clamps to a chain's last level too).
-inline constexpr float kMaxLambda = 16.0f;
 
 struct Material {
-    float lambda = 0.0f;  // minimum mip level, fractional values blend two levels
+    // The artist's blur: the Phong exponent n(λ) of phong.h, the same lobe under any environment
+    // and face size (λ = 0 a mirror). The renderer shows it through the chain while λ moves and
+    // through a lobe cube of its own once it rests.
+    float lambda = 0.0f;
     LookupMode mode = LookupMode::Reflect;
     // Normal mode only: look up the accurate irradiance map (E/π, irradiance.h) instead of the
     // chain at λ. Off by default: the paper's diffuse is the chain at a high λ.
@@ -79,7 +81,7 @@ struct EnvironmentSettings {
 
 struct DisplaySettings {
     bool showBackground = true;
-    float backgroundLambda = 0.0f;  // the background's own blur, a mip level
+    float backgroundLambda = 0.0f;  // the background's own blur, as a material's λ (phong.h)
     float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping
     ToneMap toneMap = ToneMap::Aces;
     int samples = 4;                // multisampling
