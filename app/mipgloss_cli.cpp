@@ -12,6 +12,9 @@
 #ifdef MIPGLOSS_WITH_UI
 #include "render_command.h"
 #endif
+#ifdef MIPGLOSS_WITH_PLOT
+#include "bench_plot.h"
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -40,8 +43,8 @@ const char* kUsage = R"(mipgloss )" MIPGLOSS_VERSION R"( - blurry reflections fr
 usage:
   mipgloss bake [ENV] --out DIR [--builder NAME] [--size N] [--layout L]
                 [--handedness right|left] [--irradiance] [--quiet]
-  mipgloss bench [--env FILE]... [--sizes 128,256,512,1024] [--builders a,b,...]
-                 [--repeat R]
+  mipgloss bench [--env FILE]... [--sizes 128,256,512] [--builders a,b,...]
+                 [--repeat R] [--directions D] [--no-half] [--plot FILE.svg]
   mipgloss --help | --version
 
 bake: builds the mip chain of an environment and writes
@@ -66,14 +69,26 @@ bake: builds the mip chain of an environment and writes
   --irradiance   also write the irradiance map (normal lookup for diffuse materials)
   --quiet        no progress on stderr
 
-bench: times every builder at each face size and prints, per level, the relative RMS error
-  against the exact reference convolution at the declared exponent (texel centres, solid-angle
-  weighted), with the run time and its ratio to the box filter. Timings are printed, never
-  asserted.
-  --env FILE     environment(s) to use (repeatable; default: the embedded default)
-  --sizes LIST   face sizes (default 128,256,512)
-  --builders LIST builders to time (default: all but reference, which is the truth)
-  --repeat R     timing runs per builder, the median is reported (default 3)
+bench: builds the chain of each environment at each face size N with every builder and prints
+  its build time (median of R runs) and its ratio to the box builder's, then, per read level k
+  (1 .. the first level of 8-15 texels; n_k = levelExponent(N,k)), two errors in % against the
+  exact normalized Phong convolution of the base at n_k (relative RMS over RGB):
+    centre  at the level's texel centres (solid-angle weighted), and
+    read    the chain read between centres as the GPU reads it (seamless bilinear) at uniformly
+            random directions: what the picture shows.
+  Half levels k+0.5: the trilinear blend of two levels against the lobe the renderer means there
+  while lambda moves (n with chainLevelForExponent(n,N) = k+0.5) and against the single Phong lobe
+  the blend matches best (golden-section search on log n). Then a summary of worst errors per
+  builder. The exact lobes are slow (minutes at N = 512). Timings are printed, never asserted.
+  --env FILE      environment (repeatable; default: the embedded default environment)
+  --sizes LIST    base face sizes, each >= 16 (default 128,256,512)
+  --builders LIST builders to measure (default phong,box,paper; reference is the truth)
+  --repeat R      timed builds per builder, the median is reported (default 3)
+  --directions D  random directions for the between-centres errors (default 1500)
+  --no-half       skip the half-level rows (their best-fit search is the slowest part)
+  --plot FILE.svg also draw error against time: x = build time, y = worst between-centres error
+                  over read levels, both log scale, one labelled marker per builder, size and
+                  environment; writes FILE.svg and FILE.png beside it (needs a build with Qt)
 
 Exit status: 0 on success, 1 on bad input (the message names the file), 2 on bad usage.
 )";
@@ -152,11 +167,93 @@ double median(std::vector<double> v) {
     return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The lobe chain level k stands for, with level 0 counting as N²/32 (as chainLevelForExponent has it).
+double heldExponent(int baseSize, int level) {
+    if (level == 0) return static_cast<double>(baseSize) * baseSize / 32.0;
+    return levelExponent(baseSize, level);
+}
+
+// The exponent e with chainLevelForExponent(e, N) = lod: the lobe the renderer means when it reads
+// the chain at `lod` while λ moves. chainLevelForExponent falls as e grows; bisection on log e.
+double exponentAtChainLevel(double lod, int baseSize) {
+    double lo = 0.0, hi = std::log(heldExponent(baseSize, 0));
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (chainLevelForExponent(std::exp(mid), baseSize) > lod ? lo : hi) = mid;
+    }
+    return std::exp(0.5 * (lo + hi));
+}
+
+// The chain read at `lod` at `dirs` (sampleChain, as the GPU reads it).
+std::vector<Rgb> readChain(const MipChain& chain, double lod, const std::vector<glm::vec3>& dirs) {
+    std::vector<Rgb> out(dirs.size());
+    for (std::size_t i = 0; i < dirs.size(); ++i) out[i] = sampleChain(chain, dirs[i], lod);
+    return out;
+}
+
+// The exact lobe n at `dirs` from a copy of the base reduced (area-proportional box) until its
+// texels are about σ/16 of the lobe (face ≥ 25·√n, ≥ 32): the best-fit search only, where wide
+// lobes from the full base would cost minutes. The bench prints how far this truth is from the
+// full base's at the lobes the renderer means; the best fit's printed error is against the full base.
+std::vector<Rgb> reducedTruth(const CubeMap& base, double exponent, const std::vector<glm::vec3>& dirs,
+                              std::map<int, CubeMap>& reduced) {
+    const double wanted = std::max(32.0, 25.0 * std::sqrt(exponent));
+    int s = base.size();
+    while (s % 2 == 0 && s / 2 >= wanted) s /= 2;
+    if (s == base.size()) return referenceLobeAt(base, exponent, dirs);
+    auto it = reduced.find(s);
+    if (it == reduced.end()) it = reduced.emplace(s, boxDownsample(base, s)).first;
+    return referenceLobeAt(it->second, exponent, dirs);
+}
+
+// Golden-section search on log n in [lo, hi] (to 1 % in n) for the lobe whose exact convolution
+// (reducedTruth) is closest to `read` in relative RMS.
+double bestFitExponent(const std::vector<Rgb>& read, const CubeMap& base,
+                                          const std::vector<glm::vec3>& dirs, double lo, double hi,
+                                          std::map<int, CubeMap>& reduced) {
+    auto cost = [&](double logN) { return relativeRms(read, reducedTruth(base, std::exp(logN), dirs, reduced)); };
+    double a = std::log(lo), b = std::log(hi);
+    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+    double c = b - phi * (b - a), d = a + phi * (b - a);
+    double fc = cost(c), fd = cost(d);
+    while (b - a > 0.01) {
+        if (fc < fd) {
+            b = d; d = c; fd = fc; c = b - phi * (b - a); fc = cost(c);
+        } else {
+            a = c; c = d; fc = fd; d = a + phi * (b - a); fd = cost(d);
+        }
+    }
+    return std::exp(0.5 * (a + b));
+}
+
+std::string fmtExponent(double n) {
+    char buf[32];
+    if (n >= 100) std::snprintf(buf, sizeof buf, "%.0f", n);
+    else std::snprintf(buf, sizeof buf, "%.3g", n);
+    return buf;
+}
+
+struct BenchRow {
+    std::string env;
+    int size = 0;
+    Builder builder = Builder::Phong;
+    double seconds = 0.0, ratioToBox = 0.0;
+    double worstCentre = 0.0, worstRead = 0.0;
+    double worstHalfMeant = 0.0, worstHalfFit = 0.0;
+};
+
 int runBench(Args args) {
     std::vector<fs::path> envs;
     std::vector<int> sizes{128, 256, 512};
     std::vector<Builder> builders{Builder::Phong, Builder::Box, Builder::Paper};
     int repeat = 3;
+    int directionCount = 1500;
+    bool halfLevels = true;
+    fs::path plot;
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--env") envs.emplace_back(args.value(a));
@@ -171,14 +268,38 @@ int runBench(Args args) {
                 builders.push_back(b);
             }
         } else if (a == "--repeat") repeat = parsePositive(a, args.value(a));
-        else if (a == "--help" || a == "-h") { std::cout << kUsage; return 0; }
+        else if (a == "--directions") directionCount = parsePositive(a, args.value(a));
+        else if (a == "--no-half") halfLevels = false;
+        else if (a == "--plot") {
+            plot = args.value(a);
+#ifndef MIPGLOSS_WITH_PLOT
+            throw UsageError("--plot needs Qt (Qt6 Gui and Svg); this mipgloss was built without them "
+                             "(configure with MIPGLOSS_BUILD_UI=ON, or with qt6-svg-dev installed)");
+#endif
+        } else if (a == "--help" || a == "-h") { std::cout << kUsage; return 0; }
         else throw UsageError("unknown option '" + a + "'");
     }
-    std::printf("# mipgloss bench: time and relative RMS error vs the exact reference, per level\n");
-    std::printf("# error = sqrt(sum Omega |L - L_ref|^2) / sqrt(sum Omega |L_ref|^2) over texel centres, at\n");
-    std::printf("# n = lambdaToExponent(level); time = median of %d runs on %d threads\n", repeat,
+    if (sizes.empty()) throw UsageError("--sizes needs at least one size");
+    if (builders.empty()) throw UsageError("--builders needs at least one builder");
+    for (int size : sizes)
+        if (lastReadLevel(size) < 1) throw UsageError("--sizes: face " + std::to_string(size) + " has no read level below the base (needs 16 or more)");
+
+    const std::vector<glm::vec3> dirs = uniformDirections(directionCount);
+    std::printf("# mipgloss bench: chain build time and error against the exact normalized Phong convolution\n");
+    std::printf("# time = median of %d builds on %d threads; x box = time / box builder's time\n", repeat,
                 static_cast<int>(std::thread::hardware_concurrency()));
-    std::vector<std::pair<std::string, CubeMap>> loaded;
+    std::printf("# per read level k (n_k = levelExponent(N,k)), in %%: centre = relative RMS at the level's texel\n");
+    std::printf("#   centres (compareCubes against referenceConvolution, solid-angle weighted); read = relative RMS\n");
+    std::printf("#   of the chain read between centres (sampleChain: seamless bilinear) at %d uniform directions\n",
+                directionCount);
+    if (halfLevels) {
+        std::printf("# half levels, lod k+0.5: the trilinear blend against the lobe the renderer means there\n");
+        std::printf("#   (n with chainLevelForExponent(n,N) = k+0.5) and against its best-fitting single lobe\n");
+        std::printf("#   (phong only; golden-section search on log n, error printed against the full base)\n");
+    }
+    std::fflush(stdout);
+
+    std::vector<BenchRow> rows;
     for (int size : sizes) {
         std::vector<std::pair<std::string, CubeMap>> bases;
         if (envs.empty()) {
@@ -190,53 +311,139 @@ int runBench(Args args) {
                 bases.emplace_back(e.stem().string(), loadEnvironment(e, o).cube);
             }
         }
+        const int last = lastReadLevel(size);
         for (const auto& [name, base] : bases) {
-            const auto tr = std::chrono::steady_clock::now();
+            // The truths, shared by every builder: the exact level at its texel centres, the exact
+            // lobe at the directions (what readError computes, once per exponent here).
+            auto t0 = std::chrono::steady_clock::now();
             const MipChain truth = buildReferenceChain(base);
-            const double refTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
-            std::printf("\n## %s, face %d (reference chain: %.2f s)\n", name.c_str(), size, refTime);
+            const double refTime = secondsSince(t0);
+            t0 = std::chrono::steady_clock::now();
+            std::vector<std::vector<Rgb>> levelTruth(static_cast<std::size_t>(last) + 1);
+            for (int k = 1; k <= last; ++k)
+                levelTruth[static_cast<std::size_t>(k)] = referenceLobeAt(base, levelExponent(size, k), dirs);
+            std::vector<double> halfExponent;
+            std::vector<std::vector<Rgb>> halfTruth;
+            if (halfLevels)
+                for (int k = 0; k < last; ++k) {
+                    halfExponent.push_back(exponentAtChainLevel(k + 0.5, size));
+                    halfTruth.push_back(referenceLobeAt(base, halfExponent.back(), dirs));
+                }
+            const double truthTime = secondsSince(t0);
+            std::map<int, CubeMap> reduced;  // the base box-reduced, by face size (best-fit search)
+            double reducedOff = 0.0;         // reducedTruth against the full base's truth
+            for (std::size_t k = 0; k < halfTruth.size(); ++k)
+                reducedOff = std::max(reducedOff, relativeRms(reducedTruth(base, halfExponent[k], dirs, reduced), halfTruth[k]));
+            std::printf("\n## %s, face %d: read levels 1..%d; reference chain %.2f s, lobes at the directions %.2f s\n",
+                        name.c_str(), size, last, refTime, truthTime);
+            if (halfLevels)
+                std::printf("(best-fit search: base reduced to texels of ~sigma/16, which at the meant "
+                            "lobes is within %.3f%% of the full base; fit errors printed against the full base)\n", 100 * reducedOff);
+            std::printf("%-9s %8s %7s |", "level", "", "");
+            for (int k = 1; k <= last; ++k) std::printf(" %11s", ("L" + std::to_string(k)).c_str());
+            std::printf(" | %s\n", "worst");
+            std::printf("%-9s %8s %7s |", "n_k", "", "");
+            for (int k = 1; k <= last; ++k) std::printf(" %11s", fmtExponent(levelExponent(size, k)).c_str());
+            std::printf(" |\n");
+            std::printf("%-9s %8s %7s |", "builder", "time s", "x box");
+            for (int k = 1; k <= last; ++k) std::printf(" %11s", "cent/read%");
+            std::printf(" | %s\n", "cent/read%");
             std::fflush(stdout);
-            std::printf("%-8s %9s %8s |", "builder", "time s", "x box");
-            for (int k = 1; k < truth.levelCount(); ++k) std::printf(" L%-5d", k);
-            std::printf(" | %7s %7s %9s %9s\n", "median", "worst", "mean off", "bord/int");
+
             std::map<Builder, double> times;
-            for (const Builder m : builders) {
+            std::map<Builder, MipChain> chains;
+            std::vector<Builder> timed = builders;
+            if (std::find(timed.begin(), timed.end(), Builder::Box) == timed.end()) timed.push_back(Builder::Box);
+            for (const Builder m : timed) {
                 std::vector<double> t;
-                MipChain chain;
                 for (int r = 0; r < repeat; ++r) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    chain = buildChain(base, m);
-                    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                    const auto tb = std::chrono::steady_clock::now();
+                    chains[m] = buildChain(base, m);
+                    t.push_back(secondsSince(tb));
                 }
                 times[m] = median(t);
             }
+            std::vector<std::size_t> rowOf;
             for (const Builder m : builders) {
-                const MipChain chain = buildChain(base, m);
-                const double boxTime = times.count(Builder::Box) ? times[Builder::Box] : 0.0;
-                std::printf("%-8s %9.4f %8.1f |", builderName(m), times[m], boxTime > 0 ? times[m] / boxTime : 0.0);
-                std::vector<double> errs;
-                double worstMean = 0.0, worstBorderRatio = 0.0;
-                for (int k = 1; k < truth.levelCount(); ++k) {
-                    const LevelError e = compareCubes(chain.levels[static_cast<std::size_t>(k)],
-                                                      truth.levels[static_cast<std::size_t>(k)]);
-                    errs.push_back(e.relRms);
-                    worstMean = std::max(worstMean, std::fabs(e.meanRelDiff));
-                    if (e.hasInterior && e.relRmsBorder > 1e-4)  // below 0.01 % both are rounding
-                        worstBorderRatio = std::max(worstBorderRatio, e.relRmsBorder / e.relRmsInterior);
-                    std::printf(" %5.2f%%", 100.0 * e.relRms);
+                const MipChain& chain = chains[m];
+                BenchRow row;
+                row.env = name;
+                row.size = size;
+                row.builder = m;
+                row.seconds = times[m];
+                row.ratioToBox = times[Builder::Box] > 0 ? times[m] / times[Builder::Box] : 0.0;
+                std::printf("%-9s %8.4f %7.1f |", builderName(m), row.seconds, row.ratioToBox);
+                for (int k = 1; k <= last; ++k) {
+                    const double centre = compareCubes(chain.levels[static_cast<std::size_t>(k)],
+                                                       truth.levels[static_cast<std::size_t>(k)]).relRms;
+                    const double read = relativeRms(readChain(chain, k, dirs), levelTruth[static_cast<std::size_t>(k)]);
+                    row.worstCentre = std::max(row.worstCentre, centre);
+                    row.worstRead = std::max(row.worstRead, read);
+                    char cell[32];
+                    std::snprintf(cell, sizeof cell, "%.2f/%.2f", 100 * centre, 100 * read);
+                    std::printf(" %11s", cell);
                 }
-                std::printf(" | %6.2f%% %6.2f%% %8.2f%% %9.2f\n", 100.0 * median(errs),
-                            100.0 * *std::max_element(errs.begin(), errs.end()), 100.0 * worstMean, worstBorderRatio);
+                std::printf(" | %.2f/%.2f\n", 100 * row.worstCentre, 100 * row.worstRead);
+                std::fflush(stdout);
+                rowOf.push_back(rows.size());
+                rows.push_back(row);
             }
-            // Diffuse: the paper's normal lookup into the 1×1 level vs E/π, against the exact E/π.
-            // The exact cosine convolution costs O(N²) per output texel, so it runs at face <= 128.
+
+            if (halfLevels) {
+                std::printf("%-26s |", "half level: lod");
+                for (int k = 0; k < last; ++k) std::printf(" %11.1f", k + 0.5);
+                std::printf(" |\n%-26s |", "  n meant (renderer)");
+                for (double e : halfExponent) std::printf(" %11s", fmtExponent(e).c_str());
+                std::printf(" |\n");
+                for (std::size_t b = 0; b < builders.size(); ++b) {
+                    const MipChain& chain = chains[builders[b]];
+                    BenchRow& row = rows[rowOf[b]];
+                    // The best fit only for the default builder: the others do not hold the
+                    // schedule's lobes at the levels themselves (their read errors above).
+                    const bool fitThis = builders[b] == Builder::Phong;
+                    std::vector<double> meant, fit, fitN;
+                    for (int k = 0; k < last; ++k) {
+                        const std::vector<Rgb> read = readChain(chain, k + 0.5, dirs);
+                        meant.push_back(relativeRms(read, halfTruth[static_cast<std::size_t>(k)]));
+                        row.worstHalfMeant = std::max(row.worstHalfMeant, meant.back());
+                        if (!fitThis) continue;
+                        // Searched against the reduced base, measured against the full base; the
+                        // meant lobe itself is a candidate.
+                        const double lo = heldExponent(size, k + 1) / 16.0, hi = heldExponent(size, k) * 16.0;
+                        double n = bestFitExponent(read, base, dirs, lo, hi, reduced);
+                        double err = relativeRms(read, referenceLobeAt(base, n, dirs));
+                        if (meant.back() < err) {
+                            n = halfExponent[static_cast<std::size_t>(k)];
+                            err = meant.back();
+                        }
+                        fitN.push_back(n);
+                        fit.push_back(err);
+                        row.worstHalfFit = std::max(row.worstHalfFit, fit.back());
+                    }
+                    std::printf("%-26s |", (std::string("  ") + builderName(builders[b]) + " vs meant %").c_str());
+                    for (double e : meant) std::printf(" %11.2f", 100 * e);
+                    std::printf(" | %.2f\n", 100 * row.worstHalfMeant);
+                    if (fitThis) {
+                        std::printf("%-26s |", (std::string("  ") + builderName(builders[b]) + " vs best fit %").c_str());
+                        for (double e : fit) std::printf(" %11.2f", 100 * e);
+                        std::printf(" | %.2f\n%-26s |", 100 * row.worstHalfFit,
+                                    (std::string("  ") + builderName(builders[b]) + " best-fit n").c_str());
+                        for (double n : fitN) std::printf(" %11s", fmtExponent(n).c_str());
+                        std::printf(" |\n");
+                    }
+                    std::fflush(stdout);
+                }
+            }
+
+            // Diffuse: the irradiance map and the paper's normal lookup into the 1×1 box level,
+            // against the exact E/π. The exact cosine convolution costs O(N²) per output texel, so
+            // it runs at face <= 128 only.
             if (size > 128) continue;
             const CubeMap exactIrr = referenceConvolution(base, 1.0, kIrradianceFaceSize);
-            const CubeMap irr = computeIrradiance(base);
             const auto ti = std::chrono::steady_clock::now();
-            computeIrradiance(base);
-            const double irrTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - ti).count();
-            const MipChain box = buildBoxChain(base);
+            const CubeMap irr = computeIrradiance(base);
+            const double irrTime = secondsSince(ti);
+            const MipChain& box = chains[Builder::Box];
             CubeMap paperDiffuse(exactIrr.size());
             for (Face f : kAllFaces)
                 for (int y = 0; y < paperDiffuse.size(); ++y)
@@ -247,6 +454,36 @@ int runBench(Args args) {
                         100.0 * compareCubes(paperDiffuse, exactIrr).relRms);
         }
     }
+
+    std::printf("\n## summary (worst over read levels; half levels: blend vs meant / vs best fit)\n");
+    std::printf("%-12s %5s %-9s %9s %8s %9s %9s %9s %9s\n", "env", "face", "builder", "time s", "x box", "centre%",
+                "read%", "half m%", "half f%");
+    for (const BenchRow& r : rows) {
+        std::printf("%-12s %5d %-9s %9.4f %8.1f %9.2f %9.2f", r.env.c_str(), r.size, builderName(r.builder), r.seconds,
+                    r.ratioToBox, 100 * r.worstCentre, 100 * r.worstRead);
+        if (halfLevels) std::printf(" %9.2f", 100 * r.worstHalfMeant);
+        if (halfLevels && r.builder == Builder::Phong) std::printf(" %9.2f", 100 * r.worstHalfFit);
+        std::printf("\n");
+    }
+
+#ifdef MIPGLOSS_WITH_PLOT
+    if (!plot.empty()) {
+        std::vector<app::BenchPlotPoint> points;
+        for (const BenchRow& r : rows) points.push_back({builderName(r.builder), r.env, r.size, r.seconds, r.worstRead});
+        std::string sizeList;
+        for (int s : sizes) sizeList += (sizeList.empty() ? "" : ",") + std::to_string(s);
+        const fs::path png = app::writeBenchPlot(
+            points, plot, "mipgloss bench: error against build time",
+            "each marker: one builder at one base face size N on one environment; y = worst relative RMS of the "
+            "chain read between texel centres (" + std::to_string(directionCount) +
+            " directions) over read levels 1..last, against the exact Phong lobe; x = median of " +
+            std::to_string(repeat) + " builds, " + std::to_string(std::thread::hardware_concurrency()) +
+            " threads; sizes " + sizeList);
+        std::printf("\nplot: %s (and %s)\n", plot.c_str(), png.c_str());
+    }
+#else
+    (void)plot;
+#endif
     return 0;
 }
 

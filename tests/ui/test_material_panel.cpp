@@ -1,5 +1,6 @@
 // MaterialPanel without OpenGL: λ, slider and Phong exponent kept in step through real key input,
-// ranges from the environment's face size, enabling rules, and the sRGB <-> linear conversion.
+// one λ range and one λ <-> n mapping whatever the environment's face size, enabling rules, and the
+// sRGB <-> linear conversion.
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
@@ -96,22 +97,31 @@ TEST(MaterialPanel, LambdaSpinSliderAndExponentStayInStep) {
     auto* slider = child<QSlider>(panel, "lambdaSlider");
     auto* exponent = child<QDoubleSpinBox>(panel, "exponentSpin");
     ASSERT_TRUE(spin && slider && exponent);
-    EXPECT_EQ(slider->maximum(), 7 * MaterialPanel::kSliderStepsPerLevel);  // 128² -> levels 0..7
-    EXPECT_DOUBLE_EQ(exponent->maximum(), 3.0 * 128 * 128 - 1.0);
+    // [0, kMaxLambda] whatever the environment (the chain's level count no longer limits λ).
+    EXPECT_EQ(slider->maximum(), 8 * MaterialPanel::kSliderStepsPerLambda);
+    EXPECT_DOUBLE_EQ(spin->maximum(), kMaxLambda);
 
     typeInto(spin, QStringLiteral("3.5"));
     EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 3.5f);
     EXPECT_EQ(slider->value(), 70);
-    EXPECT_NEAR(exponent->value(), lambdaToExponent(3.5, 128), 0.006);
+    // n(3.5) = 3·128²·4^−3.5 − 1 = 383.
+    EXPECT_NEAR(exponent->value(), 3.0 * 128 * 128 * std::pow(4.0, -3.5) - 1.0, 0.006);
+    EXPECT_NEAR(exponent->value(), 383.0, 0.006);
     EXPECT_FLOAT_EQ(doc.object(1).material.lambda, 2.0f) << "only the selected object changes";
 
     slider->setValue(30);  // what a drag does
     EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 1.5f);
     EXPECT_DOUBLE_EQ(spin->value(), 1.5);
 
-    // Out of range input cannot get through: the spin box clamps to the last level.
+    // The top of the range, beyond n = 0: λ 8 is allowed and shows n = 0.
+    slider->setValue(slider->maximum());
+    EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 8.0f);
+    EXPECT_EQ(exponent->value(), 0.0);
+
+    // Out of range input cannot get through: the spin box stops at kMaxLambda.
     typeInto(spin, QStringLiteral("99"));
-    EXPECT_LE(doc.object(0).material.lambda, 7.0f);
+    EXPECT_LE(doc.object(0).material.lambda, 8.0f);
+    EXPECT_TRUE(isValidLambda(doc.object(0).material.lambda));
 }
 
 TEST(MaterialPanel, TypingAnExponentSetsLambda) {
@@ -124,41 +134,78 @@ TEST(MaterialPanel, TypingAnExponentSetsLambda) {
     ASSERT_TRUE(exponent && spin);
 
     typeInto(exponent, QStringLiteral("100"));
-    const double expected = exponentToLambda(100.0, 128);
+    const double expected = exponentToLambda(100.0);
     EXPECT_NEAR(doc.object(1).material.lambda, expected, 1e-5);
     EXPECT_NEAR(spin->value(), expected, 0.005);
     // The document's λ gives back the typed exponent (not one rounded through the λ box).
     EXPECT_NEAR(exponent->value(), 100.0, 0.01);
 
-    // Digits beyond the largest exponent are refused as they are typed.
+    // Digits beyond the largest finite exponent are refused as they are typed.
     typeInto(exponent, QStringLiteral("1000000"));
     EXPECT_LE(exponent->value(), exponent->maximum());
-    // The largest exponent, 3N² − 1, is the base level: λ = 0, shown as "mirror"; "mirror" can be
-    // typed too.
+    // λ = 0 is the mirror, n = ∞, shown as "mirror"; the box's top (3·128² − 1, the limit as
+    // λ → 0) means it too, and "mirror" and "inf" can be typed.
     typeInto(exponent, QStringLiteral("49151"));
     EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
     EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
     typeInto(spin, QStringLiteral("2"));
+    EXPECT_NE(exponent->text(), QStringLiteral("mirror"));
     typeInto(exponent, QStringLiteral("mirror"));
     EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
+    typeInto(spin, QStringLiteral("2"));
+    typeInto(exponent, QStringLiteral("inf"));  // QTest types Latin-1 only, so not "∞"
+    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    typeInto(spin, QStringLiteral("0"));
+    EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
 
-    // n = 0 (a uniform hemisphere) lies beyond the chain: λ stops at the last level.
+    // The sharpest λ > 0 is not shown as a mirror.
+    Material sharp = doc.object(1).material;
+    sharp.lambda = 1e-6f;
+    doc.setMaterial(1, sharp);
+    EXPECT_NE(exponent->text(), QStringLiteral("mirror"));
+
+    // n = 0 (a uniform hemisphere) is λ(0) = log2(128·√3) ≈ 7.79, inside the range.
     typeInto(exponent, QStringLiteral("0"));
-    EXPECT_FLOAT_EQ(doc.object(1).material.lambda, 7.0f);
+    EXPECT_NEAR(doc.object(1).material.lambda, std::log2(128.0 * std::sqrt(3.0)), 1e-5);
+    EXPECT_EQ(exponent->value(), 0.0);
 }
 
-TEST(MaterialPanel, RangesFollowTheFaceSize) {
-    SceneDocument doc;
-    doc.resetScene(twoSpheres());
-    doc.setSelected(0);
-    MaterialPanel panel(&doc);
-    EnvironmentSettings e = doc.scene().environment;
-    e.faceSize = 64;
-    doc.setEnvironment(e);
-    EXPECT_EQ(panel.maxLevel(), 6);
-    EXPECT_EQ(child<QSlider>(panel, "lambdaSlider")->maximum(), 6 * MaterialPanel::kSliderStepsPerLevel);
-    EXPECT_DOUBLE_EQ(child<QDoubleSpinBox>(panel, "exponentSpin")->maximum(), 3.0 * 64 * 64 - 1.0);
-    EXPECT_NEAR(child<QDoubleSpinBox>(panel, "exponentSpin")->value(), lambdaToExponent(2.0, 64), 0.006);
+// n = 1024 typed gives λ = exponentToLambda(1024) and shows 1024 back, under a 128² and a 512²
+// environment alike: the panel's mapping does not depend on the face size.
+TEST(MaterialPanel, ExponentIsIndependentOfTheFaceSize) {
+    ShownPanel shown(0);
+    ASSERT_TRUE(shown.exposed());
+    SceneDocument& doc = shown.doc;
+    MaterialPanel& panel = shown.panel;
+    auto* exponent = child<QDoubleSpinBox>(panel, "exponentSpin");
+    auto* spin = child<QDoubleSpinBox>(panel, "lambdaSpin");
+    auto* slider = child<QSlider>(panel, "lambdaSlider");
+    ASSERT_TRUE(exponent && spin && slider);
+
+    typeInto(exponent, QStringLiteral("1024"));
+    // λ(1024) = log2(128·√3) − ½·log2(1025).
+    const double expected = std::log2(128.0 * std::sqrt(3.0)) - 0.5 * std::log2(1025.0);
+    EXPECT_NEAR(exponentToLambda(1024.0), expected, 1e-12);
+    EXPECT_NEAR(doc.object(0).material.lambda, expected, 1e-6);
+    EXPECT_NEAR(exponent->value(), 1024.0, 0.005);
+    const float lambda = doc.object(0).material.lambda;
+    const QString shownText = exponent->text();
+
+    for (int faceSize : {512, 128, 64, 512}) {
+        EnvironmentSettings e = doc.scene().environment;
+        e.faceSize = faceSize;
+        doc.setEnvironment(e);
+        EXPECT_EQ(doc.object(0).material.lambda, lambda) << faceSize;
+        EXPECT_EQ(exponent->text(), shownText) << faceSize;
+        EXPECT_NEAR(exponent->value(), 1024.0, 0.005) << faceSize;
+        EXPECT_EQ(slider->maximum(), 8 * MaterialPanel::kSliderStepsPerLambda) << faceSize;
+        EXPECT_DOUBLE_EQ(spin->maximum(), kMaxLambda) << faceSize;
+    }
+    // Typing it again under 512² gives the same λ.
+    typeInto(spin, QStringLiteral("1"));
+    typeInto(exponent, QStringLiteral("1024"));
+    EXPECT_EQ(doc.object(0).material.lambda, lambda);
 }
 
 TEST(MaterialPanel, IrradianceOnlyInNormalMode) {

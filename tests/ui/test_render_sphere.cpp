@@ -160,9 +160,9 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
 
 INSTANTIATE_TEST_SUITE_P(Lookups, RenderSphere,
                          ::testing::Values(SphereCase{"mirror_lambda0", 0.0f, LookupMode::Reflect, 1024},
-                                           SphereCase{"lambda3", 3.0f, LookupMode::Reflect, 384},
+                                           SphereCase{"lambda6", 6.0f, LookupMode::Reflect, 384},
                                            SphereCase{"lambda5", 5.0f, LookupMode::Reflect, 384},
-                                           SphereCase{"lambda3_5", 3.5f, LookupMode::Reflect, 384},
+                                           SphereCase{"lambda5_5", 5.5f, LookupMode::Reflect, 384},
                                            SphereCase{"normal_lambda6", 6.0f, LookupMode::Normal, 384},
                                            SphereCase{"normal_irradiance", 0.0f, LookupMode::Normal, 384, true}),
                          [](const ::testing::TestParamInfo<SphereCase>& p) { return std::string(p.param.name); });

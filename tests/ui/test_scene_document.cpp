@@ -126,21 +126,74 @@ TEST(SceneDocument, SettersEmitOnlyOnChange) {
     EXPECT_EQ(changed.count(), 1 + 1 + 2 + 1 + 1);
 }
 
+TEST(SceneDocument, InvalidLambdaIsRefused) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    QSignalSpy material(&doc, &SceneDocument::materialChanged);
+    QSignalSpy display(&doc, &SceneDocument::displayChanged);
+    Material m;
+    m.lambda = 2.0f;
+    doc.setMaterial(0, m);
+    ASSERT_EQ(material.count(), 1);
+    // NaN, negative and huge λ are refused: the last good value stays and nothing is emitted.
+    for (float bad : {1000.0f, 8.001f, -3.0f, -0.0001f, std::numeric_limits<float>::quiet_NaN(),
+                      std::numeric_limits<float>::infinity()}) {
+        m.lambda = bad;
+        doc.setMaterial(0, m);
+        EXPECT_EQ(doc.object(0).material.lambda, 2.0f) << bad;
+    }
+    EXPECT_EQ(material.count(), 1);
+    // The ends of [0, kMaxLambda] are fine.
+    m.lambda = static_cast<float>(kMaxLambda);
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.lambda, 8.0f);
+    m.lambda = 0.0f;
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    // The edit's other fields still apply alongside a refused λ.
+    m.lambda = -1.0f;
+    m.mode = LookupMode::Normal;
+    doc.setMaterial(0, m);
+    EXPECT_EQ(doc.object(0).material.mode, LookupMode::Normal);
+    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+
+    // The background's λ likewise.
+    DisplaySettings d = doc.scene().display;
+    d.backgroundLambda = 1.5f;
+    doc.setDisplay(d);
+    EXPECT_EQ(doc.scene().display.backgroundLambda, 1.5f);
+    const int displayed = static_cast<int>(display.count());
+    d.backgroundLambda = std::numeric_limits<float>::quiet_NaN();
+    doc.setDisplay(d);
+    d.backgroundLambda = 17.0f;
+    doc.setDisplay(d);
+    EXPECT_EQ(doc.scene().display.backgroundLambda, 1.5f);
+    EXPECT_EQ(display.count(), displayed);
+
+    // Objects and scenes arriving whole have no last good value: clamped to [0, kMaxLambda], NaN
+    // to the mirror.
+    Scene scene = threeSpheres();
+    scene.objects[0].material.lambda = 16.0f;
+    scene.objects[1].material.lambda = std::numeric_limits<float>::quiet_NaN();
+    scene.objects[2].material.lambda = -1.0f;
+    scene.display.backgroundLambda = 12.0f;
+    doc.resetScene(scene);
+    EXPECT_EQ(doc.object(0).material.lambda, 8.0f);
+    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    EXPECT_EQ(doc.object(2).material.lambda, 0.0f);
+    EXPECT_EQ(doc.scene().display.backgroundLambda, 8.0f);
+    SceneObject extra = doc.object(0);
+    extra.material.lambda = 100.0f;
+    EXPECT_EQ(doc.object(doc.addObject(extra)).material.lambda, 8.0f);
+}
+
 TEST(SceneDocument, MaterialIsSanitised) {
     SceneDocument doc;
     doc.resetScene(threeSpheres());
     Material m;
-    m.lambda = 1000.0f;
+    m.tint = Rgb(-1.0f, std::numeric_limits<float>::quiet_NaN(), 0.5f);
     doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.lambda, kMaxLambda);
-    m.lambda = -3.0f;
-    doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
-    m.lambda = 2.0f;
-    doc.setMaterial(0, m);
-    m.lambda = std::numeric_limits<float>::quiet_NaN();
-    doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    EXPECT_EQ(doc.object(0).material.tint, Rgb(0.0f, 1.0f, 0.5f));
     // A non-finite transform is refused; the object keeps its placement.
     Transform t;
     t.translation.x = std::numeric_limits<float>::infinity();

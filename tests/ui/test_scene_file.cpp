@@ -1,4 +1,7 @@
-// Scene files: round trips, relative paths, shared meshes, and every user error naming the file.
+// Scene files: round trips, relative paths, shared meshes, version 1 λ keeping its look, and every
+// user error naming the file.
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_file.h"
 
 #include "test_support.h"
@@ -11,8 +14,11 @@
 #include <QJsonObject>
 #include <QTemporaryDir>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
@@ -29,8 +35,9 @@ void writeText(const fs::path& file, const std::string& text) {
 }
 
 // A minimal valid scene with one object using `mesh`, and `materialJson` as its material.
-std::string oneObjectScene(const std::string& mesh, const std::string& materialJson = "{}") {
-    return R"({"format": "mipgloss-scene", "version": 1,
+std::string oneObjectScene(const std::string& mesh, const std::string& materialJson = "{}",
+                           int version = kSceneVersion) {
+    return R"({"format": "mipgloss-scene", "version": )" + std::to_string(version) + R"(,
                "environment": {"source": "builtin:courtyard"},
                "objects": [{"name": "thing", "mesh": ")" +
            mesh + R"(", "material": )" + materialJson + "}]}";
@@ -149,7 +156,7 @@ TEST(SceneFile, PathsAreRelativeToTheSceneFileAndSurviveAMove) {
                              }())
                                  .object();
     EXPECT_EQ(root.value("format").toString(), QStringLiteral("mipgloss-scene"));
-    EXPECT_EQ(root.value("version").toInt(), 1);
+    EXPECT_EQ(root.value("version").toInt(), 2);
     const QJsonArray objects = root.value("objects").toArray();
     ASSERT_EQ(objects.size(), 3);
     EXPECT_EQ(objects.at(0).toObject().value("mesh").toString(), QStringLiteral("../meshes/bunny.obj"));
@@ -247,27 +254,261 @@ TEST(SceneFile, NonFiniteNumbersAndWrongTypesAreRejected) {
     EXPECT_NE(scale.find("scale"), std::string::npos) << scale;
 }
 
-TEST(SceneFile, AbsurdValuesAreClampedWithAWarning) {
+TEST(SceneFile, AbsurdSettingsAreClampedWithAWarning) {
     QTemporaryDir dir;
     SceneFileReport report;
     const std::string error = loadError(
         dir, "absurd.json",
-        R"({"format": "mipgloss-scene", "version": 1,
+        R"({"format": "mipgloss-scene", "version": 2,
             "environment": {"faceSize": 100000},
             "display": {"samples": 6},
-            "objects": [{"mesh": "builtin:sphere", "material": {"lambda": 1000}},
-                        {"mesh": "builtin:sphere", "material": {"lambda": -2}}]})",
+            "objects": [{"mesh": "builtin:sphere", "material": {"lambda": 8}},
+                        {"mesh": "builtin:sphere", "material": {"lambda": 0}}]})",
         &report);
     ASSERT_TRUE(error.empty()) << error;
     const Scene scene = loadScene(fs::path(dir.path().toStdString()) / "absurd.json");
-    EXPECT_EQ(scene.objects[0].material.lambda, kMaxLambda);
+    EXPECT_EQ(scene.objects[0].material.lambda, 8.0f);
     EXPECT_EQ(scene.objects[1].material.lambda, 0.0f);
     EXPECT_EQ(scene.environment.faceSize, 4096);
     EXPECT_EQ(scene.display.samples, 4);
     EXPECT_EQ(scene.objects[0].mesh.get(), scene.objects[1].mesh.get());
-    ASSERT_EQ(report.warnings.size(), 4u);
+    ASSERT_EQ(report.warnings.size(), 2u);  // the face size, the samples not a power of two
     for (const std::string& w : report.warnings)
         EXPECT_NE(w.find("absurd.json"), std::string::npos) << w;
-    EXPECT_NE(report.warnings[2].find("objects[0].material.lambda"), std::string::npos)
-        << report.warnings[2];
+}
+
+namespace {
+
+std::string jsonNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
+// A hand-written version 1 file: face size `faceSize`, background λ `background`, and one sphere
+// per material λ (old meaning).
+std::string versionOneScene(int faceSize, double background, const std::vector<double>& lambdas) {
+    std::string objects;
+    for (double l : lambdas) {
+        if (!objects.empty()) objects += ", ";
+        objects += R"({"mesh": "builtin:sphere", "material": {"lambda": )" + jsonNumber(l) + "}}";
+    }
+    return R"({"format": "mipgloss-scene", "version": 1,
+               "environment": {"source": "builtin:courtyard", "faceSize": )" +
+           std::to_string(faceSize) + R"(},
+               "display": {"backgroundLambda": )" + jsonNumber(background) + R"(},
+               "objects": [)" + objects + "]}";
+}
+
+fs::path writeScene(const QTemporaryDir& dir, const std::string& name, const std::string& json) {
+    const fs::path file = fs::path(dir.path().toStdString()) / name;
+    writeText(file, json);
+    return file;
+}
+
+}  // namespace
+
+// Version 1 stored λ against the face size it was saved with: n = 3·N²·4^−λ − 1. Loading keeps
+// that lobe, so the material looks as it did.
+TEST(SceneFile, VersionOneLambdaKeepsItsLookThroughTheSavedFaceSize) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    SceneFileReport report;
+    const Scene big =
+        loadScene(writeScene(dir, "v1_512.json", versionOneScene(512, 3.0, {3.0, 0.0, 5.5})), &report);
+    EXPECT_TRUE(report.warnings.empty());
+    ASSERT_EQ(big.objects.size(), 3u);
+    EXPECT_EQ(big.environment.faceSize, 512);
+    const double n3 = 3.0 * 512.0 * 512.0 * std::pow(4.0, -3.0) - 1.0;  // 12287
+    EXPECT_NEAR(lambdaToExponent(big.objects[0].material.lambda), n3, 1e-9 * n3);
+    EXPECT_NEAR(big.objects[0].material.lambda, 1.0, 1e-6) << "512 = 4·128: two levels sharper";
+    EXPECT_EQ(big.objects[1].material.lambda, 0.0f) << "the mirror stays a mirror";
+    const double n55 = 3.0 * 512.0 * 512.0 * std::pow(4.0, -5.5) - 1.0;
+    EXPECT_NEAR(lambdaToExponent(big.objects[2].material.lambda), n55, 1e-6 * n55);
+    EXPECT_NEAR(lambdaToExponent(big.display.backgroundLambda), n3, 1e-9 * n3);
+
+    // At the reference size 128 the old and new meanings agree: λ unchanged.
+    const Scene ref =
+        loadScene(writeScene(dir, "v1_128.json", versionOneScene(128, 2.25, {3.0, 0.0, 6.75})));
+    EXPECT_FLOAT_EQ(ref.objects[0].material.lambda, 3.0f);
+    EXPECT_EQ(ref.objects[1].material.lambda, 0.0f);
+    EXPECT_FLOAT_EQ(ref.objects[2].material.lambda, 6.75f);
+    EXPECT_FLOAT_EQ(ref.display.backgroundLambda, 2.25f);
+
+    // A small face size: λ_old beyond that size's n = 0 point (old λ up to 16 was allowed) is n = 0.
+    const Scene small =
+        loadScene(writeScene(dir, "v1_32.json", versionOneScene(32, 0.0, {1.0, 16.0})));
+    const double n1 = 3.0 * 32.0 * 32.0 / 4.0 - 1.0;  // 767
+    EXPECT_NEAR(lambdaToExponent(small.objects[0].material.lambda), n1, 1e-6 * n1);
+    EXPECT_NEAR(small.objects[0].material.lambda, 3.0, 1e-6) << "32 = 128/4: two levels blurrier";
+    EXPECT_EQ(lambdaToExponent(small.objects[1].material.lambda), 0.0);
+    EXPECT_TRUE(isValidLambda(small.objects[1].material.lambda));
+    EXPECT_EQ(small.display.backgroundLambda, 0.0f);
+
+    // Without a face size a version 1 file meant 128 (the old default): unchanged.
+    const Scene bare = loadScene(writeScene(dir, "v1_bare.json", oneObjectScene("builtin:sphere",
+                                                                               R"({"lambda": 4.5})", 1)));
+    EXPECT_FLOAT_EQ(bare.objects[0].material.lambda, 4.5f);
+
+    // Saved again, it is a version 2 file with the converted λ, which then loads unchanged.
+    const fs::path resaved = fs::path(dir.path().toStdString()) / "resaved.json";
+    saveScene(big, resaved);
+    const Scene again = loadScene(resaved);
+    EXPECT_EQ(again.objects[0].material, big.objects[0].material);
+    EXPECT_EQ(again.display, big.display);
+}
+
+// Version 2 stores λ exactly, and a "phongExponent" beside it: n(λ), null for the mirror.
+TEST(SceneFile, VersionTwoRoundTripKeepsLambdaExactly) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    const std::vector<float> lambdas = {0.0f, 1e-6f, static_cast<float>(exponentToLambda(1024.0)),
+                                        3.14159274f, 7.7924814f, 8.0f};
+    Scene scene;
+    for (float l : lambdas) {
+        SceneObject o;
+        o.name = "sphere";
+        o.mesh = std::make_shared<const Mesh>(makeSphere(8, 16));
+        o.meshSource = "builtin:sphere";
+        o.material.lambda = l;
+        scene.objects.push_back(o);
+    }
+    scene.environment.faceSize = 512;  // λ does not depend on it
+    scene.display.backgroundLambda = 2.0f / 3.0f;
+    const fs::path file = fs::path(dir.path().toStdString()) / "v2.json";
+    saveScene(scene, file);
+
+    SceneFileReport report;
+    const Scene loaded = loadScene(file, &report);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    ASSERT_EQ(loaded.objects.size(), lambdas.size());
+    for (std::size_t i = 0; i < lambdas.size(); ++i)
+        EXPECT_EQ(loaded.objects[i].material.lambda, lambdas[i]) << i;
+    EXPECT_EQ(loaded.display.backgroundLambda, scene.display.backgroundLambda);
+
+    QFile in(QString::fromStdString(file.string()));
+    ASSERT_TRUE(in.open(QIODevice::ReadOnly));
+    const QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
+    EXPECT_EQ(root.value("version").toInt(), 2);
+    const QJsonArray objects = root.value("objects").toArray();
+    ASSERT_EQ(objects.size(), static_cast<qsizetype>(lambdas.size()));
+    const QJsonValue mirror = objects.at(0).toObject().value("material").toObject().value("phongExponent");
+    EXPECT_TRUE(mirror.isNull()) << "the mirror's exponent is null (∞)";
+    const QJsonValue n1024 = objects.at(2).toObject().value("material").toObject().value("phongExponent");
+    ASSERT_TRUE(n1024.isDouble());
+    EXPECT_NEAR(n1024.toDouble(), 1024.0, 1024.0 * 1e-6);
+    const QJsonValue zero = objects.at(5).toObject().value("material").toObject().value("phongExponent");
+    EXPECT_EQ(zero.toDouble(-1.0), 0.0);
+}
+
+// "phongExponent" is information: λ decides; a disagreeing one is a warning, an absurd one an error.
+TEST(SceneFile, PhongExponentIsCheckedAgainstLambda) {
+    QTemporaryDir dir;
+    SceneFileReport report;
+    const std::string ok = loadError(
+        dir, "agree.json",
+        oneObjectScene("builtin:sphere", R"({"lambda": 3, "phongExponent": 767})"), &report);
+    EXPECT_TRUE(ok.empty()) << ok;
+    EXPECT_TRUE(report.warnings.empty());
+    const std::string mirror = loadError(
+        dir, "mirror.json", oneObjectScene("builtin:sphere", R"({"lambda": 0, "phongExponent": null})"),
+        &report);
+    EXPECT_TRUE(mirror.empty()) << mirror;
+    EXPECT_TRUE(report.warnings.empty());
+
+    const fs::path file = writeScene(
+        dir, "stale.json", oneObjectScene("builtin:sphere", R"({"lambda": 2, "phongExponent": 767})"));
+    const Scene stale = loadScene(file, &report);
+    EXPECT_EQ(stale.objects[0].material.lambda, 2.0f) << "λ decides";
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("stale.json"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("objects[0].material.phongExponent"), std::string::npos)
+        << report.warnings[0];
+
+    for (const char* bad : {"-1", "-0.5", "\"767\"", "[1]", "true"}) {
+        const std::string error = loadError(
+            dir, "badn.json",
+            oneObjectScene("builtin:sphere", std::string(R"({"lambda": 3, "phongExponent": )") + bad + "}"));
+        EXPECT_NE(error.find("badn.json"), std::string::npos) << bad << ": " << error;
+        EXPECT_NE(error.find("objects[0].material.phongExponent"), std::string::npos)
+            << bad << ": " << error;
+    }
+}
+
+// An absurd λ is an error naming the file, the key and the value, never a clamp; the document that
+// would have received the scene keeps its last good state.
+TEST(SceneFile, AbsurdLambdaIsAnErrorAndChangesNothing) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    SceneDocument doc;
+    Scene good = makeFigure1Scene();
+    doc.resetScene(good);
+    const std::vector<float> before = [&] {
+        std::vector<float> l;
+        for (const SceneObject& o : doc.scene().objects) l.push_back(o.material.lambda);
+        return l;
+    }();
+    const DisplaySettings display = doc.scene().display;
+
+    struct Case {
+        std::string value, shown;
+        int version;
+    };
+    // null is not "missing": a present key must hold a number.
+    const std::vector<Case> cases = {{"-1", "-1", 2},        {"1e9", "1e+09", 2}, {"8.5", "8.5", 2},
+                                     {"\"abc\"", "\"abc\"", 2}, {"null", "null", 2}, {"true", "true", 2},
+                                     {"-0.5", "-0.5", 1},    {"16.5", "16.5", 1}, {"\"3\"", "\"3\"", 1}};
+    for (const Case& c : cases) {
+        const std::string name = "absurd_v" + std::to_string(c.version) + ".json";
+        // The third object holds the bad λ, after two good ones.
+        const std::string json =
+            R"({"format": "mipgloss-scene", "version": )" + std::to_string(c.version) + R"(,
+                "objects": [{"mesh": "builtin:sphere", "material": {"lambda": 1}},
+                            {"mesh": "builtin:sphere", "material": {"lambda": 2}},
+                            {"mesh": "builtin:sphere", "material": {"lambda": )" + c.value + "}}]}";
+        const fs::path file = writeScene(dir, name, json);
+        try {
+            doc.resetScene(loadScene(file));  // what the window's Open does
+            ADD_FAILURE() << c.value << " (version " << c.version << ") loaded";
+        } catch (const SceneFileError& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(e.file(), file);
+            EXPECT_NE(what.find(name), std::string::npos) << what;
+            EXPECT_NE(what.find("objects[2].material.lambda"), std::string::npos) << what;
+            EXPECT_NE(what.find(c.shown), std::string::npos) << what;
+        }
+        ASSERT_EQ(doc.objectCount(), static_cast<int>(before.size()));
+        for (int i = 0; i < doc.objectCount(); ++i)
+            EXPECT_EQ(doc.object(i).material.lambda, before[static_cast<std::size_t>(i)]) << c.value;
+    }
+
+    // The background's λ likewise.
+    for (const char* bad : {"-2", "100", "\"blurry\""}) {
+        const fs::path file = writeScene(
+            dir, "background.json",
+            std::string(R"({"format": "mipgloss-scene", "version": 2, "display": {"backgroundLambda": )") +
+                bad + "}}");
+        try {
+            doc.resetScene(loadScene(file));
+            ADD_FAILURE() << bad << " loaded";
+        } catch (const SceneFileError& e) {
+            EXPECT_NE(std::string(e.what()).find("background.json"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("display.backgroundLambda"), std::string::npos)
+                << e.what();
+        }
+        EXPECT_EQ(doc.scene().display, display);
+    }
+
+    // Nor is a scene holding one ever written.
+    Scene broken = good;
+    broken.objects[1].material.lambda = -1.0f;
+    const fs::path out = fs::path(dir.path().toStdString()) / "never.json";
+    try {
+        saveScene(broken, out);
+        ADD_FAILURE() << "saved a negative λ";
+    } catch (const SceneFileError& e) {
+        EXPECT_NE(std::string(e.what()).find("objects[1].material.lambda"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(fs::exists(out));
 }

@@ -189,13 +189,19 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     const QImage before = w->viewport()->grabFramebuffer();
     const std::uint64_t buildsBefore = w->environments()->counters().chainBuilds;
     const std::uint64_t uploadsBefore = w->viewport()->counters().chainUploads;
+    const std::uint64_t lobesBefore = w->environments()->counters().lobeBuilds;
     EXPECT_GE(uploadsBefore, 1u);
 
     QSignalSpy frames(w->viewport(), &Viewport::frameDrawn);
     typeInto(lambdaSpin, QStringLiteral("0.5"));
     EXPECT_FLOAT_EQ(w->document()->object(1).material.lambda, 0.5f);
     ASSERT_TRUE(waitUntil([&] { return frames.count() > 0; }, kFrameTimeoutMs)) << "no frame after the edit";
-    EXPECT_FALSE(w->environments()->busy()) << "a λ inside the filtered levels must not start a build";
+    // While λ moves the chain shows it: nothing is built or uploaded for the chain. Once λ rests
+    // (EnvironmentManager::kSettleMs), one lobe cube is made for it: the settled picture.
+    ASSERT_TRUE(w->environments()->waitUntilIdle());
+    ASSERT_TRUE(settledFrame(*w));
+    EXPECT_EQ(w->environments()->counters().lobeBuilds, lobesBefore + 1) << "one lobe cube for the new λ";
+    EXPECT_GE(w->viewport()->counters().objectsSettled, 1u);
     const QImage after = w->viewport()->grabFramebuffer();
 
     ASSERT_EQ(before.size(), after.size());
@@ -217,11 +223,10 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     EXPECT_EQ(w->environments()->counters().chainBuilds, buildsBefore);
     EXPECT_EQ(w->viewport()->counters().chainUploads, uploadsBefore);
 
-    // Typing an exponent sets λ through the one mapping (phong.h), for the document's face size.
-    const int faceSize = w->document()->scene().environment.faceSize;
+    // Typing an exponent sets λ through the one mapping (phong.h), whatever the face size.
     typeInto(exponentSpin, QStringLiteral("250"));
-    EXPECT_NEAR(w->document()->object(1).material.lambda, exponentToLambda(250.0, faceSize), 1e-5);
-    EXPECT_NEAR(lambdaSpin->value(), exponentToLambda(250.0, faceSize), 0.005);
+    EXPECT_NEAR(w->document()->object(1).material.lambda, exponentToLambda(250.0), 1e-5);
+    EXPECT_NEAR(lambdaSpin->value(), exponentToLambda(250.0), 0.005);
     EXPECT_NEAR(exponentSpin->value(), 250.0, 0.01);
     EXPECT_EQ(w->environments()->counters().chainBuilds, buildsBefore);
 
@@ -230,6 +235,28 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     ASSERT_FALSE(list->selectionModel()->selectedRows().isEmpty());
     EXPECT_EQ(list->selectionModel()->selectedRows().first().row(), 2);
     EXPECT_DOUBLE_EQ(lambdaSpin->value(), 5.0);
+}
+
+// The background's blur is a material's λ: [0, kMaxLambda] under any face size, and what is typed
+// reaches the document unchanged.
+TEST(MainWindow, BackgroundBlurUsesTheOneLambdaRange) {
+    auto w = openWindow();
+    auto* blur = w->findChild<QDoubleSpinBox*>(QStringLiteral("backgroundBlurSpin"));
+    ASSERT_NE(blur, nullptr);
+    SceneDocument* doc = w->document();
+    for (int faceSize : {64, 512, 128}) {
+        EnvironmentSettings e = doc->scene().environment;
+        e.faceSize = faceSize;
+        doc->setEnvironment(e);
+        EXPECT_EQ(blur->minimum(), 0.0) << faceSize;
+        EXPECT_EQ(blur->maximum(), kMaxLambda) << faceSize;
+    }
+    ASSERT_TRUE(blur->isEnabled());
+    typeInto(blur, QStringLiteral("7.5"));  // beyond a 64² or 128² chain's old last level
+    EXPECT_FLOAT_EQ(doc->scene().display.backgroundLambda, 7.5f);
+    typeInto(blur, QStringLiteral("99"));
+    EXPECT_TRUE(isValidLambda(doc->scene().display.backgroundLambda));
+    EXPECT_LE(doc->scene().display.backgroundLambda, 8.0f);
 }
 
 TEST(MainWindow, ImportedMeshesArePlacedBesideAndSizedToTheScene) {
@@ -323,6 +350,10 @@ TEST(MainWindow, BadFilesLeaveTheSceneAsItWas) {
     }
     const QString badScene = dir.filePath(QStringLiteral("bad_scene.json"));
     writeFile(badScene, R"({"format": "mipgloss-scene", "version": 1, "objects": [{"mesh": "gone.obj"}]})");
+    const QString badLambda = dir.filePath(QStringLiteral("bad_lambda.json"));
+    writeFile(badLambda, R"({"format": "mipgloss-scene", "version": 2, "objects": [
+        {"name": "fine", "mesh": "builtin:sphere", "material": {"lambda": 2}},
+        {"name": "absurd", "mesh": "builtin:sphere", "material": {"lambda": -1}}]})");
 
     auto w = openWindow();
     ASSERT_TRUE(settledFrame(*w));
@@ -375,6 +406,12 @@ TEST(MainWindow, BadFilesLeaveTheSceneAsItWas) {
     EXPECT_FALSE(w->openScene(badScene));
     expectUnchanged(badScene);
     EXPECT_TRUE(w->lastMessage().contains(QStringLiteral("gone.obj")));
+    for (int i = 0; i < doc->objectCount(); ++i) EXPECT_EQ(doc->object(i).name, namesBefore[static_cast<std::size_t>(i)]);
+    // An absurd λ is an error naming the file and the field, and the scene stays as it was.
+    EXPECT_FALSE(w->openScene(badLambda));
+    expectUnchanged(badLambda);
+    EXPECT_TRUE(w->lastMessage().contains(QStringLiteral("objects[1].material.lambda")))
+        << w->lastMessage().toStdString();
     for (int i = 0; i < doc->objectCount(); ++i) EXPECT_EQ(doc->object(i).name, namesBefore[static_cast<std::size_t>(i)]);
 }
 

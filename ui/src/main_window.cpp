@@ -1,6 +1,7 @@
 #include "mipgloss/ui/main_window.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/environment_manager.h"
@@ -391,6 +392,12 @@ QWidget* MainWindow::buildEnvironmentDock() {
     backgroundBlur_->setPrefix(QStringLiteral("blur λ "));
     backgroundBlur_->setDecimals(2);
     backgroundBlur_->setSingleStep(0.25);
+    // The same λ as a material's (phong.h): one meaning under any environment and face size.
+    backgroundBlur_->setRange(0.0, kMaxLambda);
+    backgroundBlur_->setToolTip(
+        tr("The background's blur λ, as a material's: the Phong lobe n = 3·128²·4^−λ − 1, the same "
+           "under any environment and face size; 0 is sharp, each +1 makes the lobe twice as "
+           "wide"));
     backgroundBlur_->setKeyboardTracking(false);
     connect(backgroundBlur_, &QDoubleSpinBox::valueChanged, this, [editDisplay](double v) {
         editDisplay([v](DisplaySettings& d) { d.backgroundLambda = static_cast<float>(v); });
@@ -480,7 +487,6 @@ void MainWindow::refreshEnvironmentWidgets() {
     handedness_->setCurrentIndex(handedness_->findData(static_cast<int>(s.handedness)));
     rotation_->setValue(static_cast<int>(std::lround(s.rotationDegrees)));
     showBackground_->setChecked(d.showBackground);
-    backgroundBlur_->setRange(0.0, fullChainLevelCount(std::max(s.faceSize, 1)) - 1);
     backgroundBlur_->setValue(d.backgroundLambda);
     backgroundBlur_->setEnabled(d.showBackground);
     exposure_->setValue(d.exposureEv);

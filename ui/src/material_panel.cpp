@@ -42,8 +42,12 @@ Rgb linearFromColor(const QColor& color) {
 
 namespace {
 
-// The exponent box: its maximum, n = 3N² − 1 at λ = 0, is the base level itself and reads
-// "mirror"; typing "mirror" (or "inf", "∞") asks for it.
+// The exponent box's top: the largest finite n, 3·128² − 1, the limit of n(λ) as λ → 0. It stands
+// for the mirror (λ = 0, n = ∞; exponentToLambda gives 0 from here on) and reads "mirror".
+const double kExponentBoxTop = 3.0 * kLambdaReferenceSize * kLambdaReferenceSize - 1.0;
+
+// The exponent box: its maximum stands for the mirror and reads "mirror"; typing "mirror" (or
+// "inf", "∞") asks for it.
 class ExponentSpinBox : public QDoubleSpinBox {
 public:
     using QDoubleSpinBox::QDoubleSpinBox;
@@ -124,17 +128,21 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     lambdaSlider_ = new QSlider(Qt::Horizontal, materialBox);
     lambdaSlider_->setObjectName(QStringLiteral("lambdaSlider"));
     lambdaSlider_->setSingleStep(1);
-    lambdaSlider_->setPageStep(kSliderStepsPerLevel / 2);
-    lambdaSlider_->setTickInterval(kSliderStepsPerLevel);
+    lambdaSlider_->setPageStep(kSliderStepsPerLambda / 2);
+    lambdaSlider_->setTickInterval(kSliderStepsPerLambda);
     lambdaSlider_->setTickPosition(QSlider::TicksBelow);
-    lambdaSpin_ = makeSpin(materialBox, QStringLiteral("lambdaSpin"), 0.0, 7.0, 2,
-                           1.0 / kSliderStepsPerLevel);
+    lambdaSlider_->setRange(0, static_cast<int>(std::lround(kMaxLambda * kSliderStepsPerLambda)));
+    lambdaSpin_ = makeSpin(materialBox, QStringLiteral("lambdaSpin"), 0.0, kMaxLambda, 2,
+                           1.0 / kSliderStepsPerLambda);
     auto* lambdaRow = new QHBoxLayout;
     lambdaRow->addWidget(lambdaSlider_, 1);
     lambdaRow->addWidget(lambdaSpin_);
     form->addRow(tr("Blur λ"), lambdaRow);
-    lambdaSlider_->setToolTip(tr("Minimum mip level λ: 0 is a mirror, each level doubles the "
-                                 "blur's width"));
+    lambdaSlider_->setToolTip(
+        tr("Blur λ: the Phong lobe n = 3·128²·4^−λ − 1, the same under any environment and face "
+           "size. 0 is a mirror; each +1 makes the lobe twice as wide (n about 4× smaller); from "
+           "%1 on n = 0, a uniform hemisphere.")
+            .arg(exponentToLambda(0.0), 0, 'f', 2));
     lambdaSpin_->setToolTip(lambdaSlider_->toolTip());
 
     exponentSpin_ = new ExponentSpinBox(materialBox);
@@ -142,6 +150,10 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     exponentSpin_->setDecimals(2);
     exponentSpin_->setKeyboardTracking(false);
     exponentSpin_->setSingleStep(1.0);
+    exponentSpin_->setRange(0.0, kExponentBoxTop);
+    exponentSpin_->setToolTip(
+        tr("Phong exponent n of the blur, λ = log2(128·√3) − ½·log2(n + 1); the same lobe under "
+           "any environment. \"mirror\" (or \"inf\", ∞) is λ 0; n = 0 is a uniform hemisphere."));
     form->addRow(tr("Phong exponent n"), exponentSpin_);
 
     mode_ = new QComboBox(materialBox);
@@ -195,11 +207,11 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
             refresh();
     });
     connect(lambdaSlider_, &QSlider::valueChanged, this,
-            [this](int v) { setLambda(v / static_cast<double>(kSliderStepsPerLevel)); });
+            [this](int v) { setLambda(v / static_cast<double>(kSliderStepsPerLambda)); });
     connect(lambdaSpin_, &QDoubleSpinBox::valueChanged, this, &MaterialPanel::setLambda);
     connect(exponentSpin_, &QDoubleSpinBox::valueChanged, this, [this](double n) {
-        // The maximum is λ = 0 exactly (the formula at n = 3N² − 1 gives 0 up to rounding).
-        setLambda(n >= exponentSpin_->maximum() ? 0.0 : exponentToLambda(n, faceSize()));
+        // The top is the mirror, λ = 0 exactly (the formula there gives 0 up to rounding).
+        setLambda(n >= kExponentBoxTop ? 0.0 : exponentToLambda(n));
     });
     connect(mode_, &QComboBox::currentIndexChanged, this, [this](int) {
         const auto mode = static_cast<LookupMode>(mode_->currentData().toInt());
@@ -227,7 +239,6 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     // Document -> widgets.
     connect(document_, &SceneDocument::selectionChanged, this, &MaterialPanel::refresh);
     connect(document_, &SceneDocument::objectsChanged, this, &MaterialPanel::refresh);
-    connect(document_, &SceneDocument::environmentChanged, this, &MaterialPanel::refresh);
     connect(document_, &SceneDocument::materialChanged, this, [this](int index) {
         if (index == document_->selected()) refreshMaterial();
     });
@@ -240,12 +251,6 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     refresh();
 }
 
-int MaterialPanel::faceSize() const { return std::max(1, document_->scene().environment.faceSize); }
-
-int MaterialPanel::maxLevel() const {
-    return std::min(fullChainLevelCount(faceSize()) - 1, static_cast<int>(kMaxLambda));
-}
-
 void MaterialPanel::refresh() {
     const bool valid = document_->isValidIndex(document_->selected());
     editor_->setEnabled(valid);
@@ -255,34 +260,23 @@ void MaterialPanel::refresh() {
         name_->setText(valid ? QString::fromStdString(document_->object(document_->selected()).name)
                              : QString());
     }
-    refreshRanges();
     refreshMaterial();
     refreshTransform();
-}
-
-void MaterialPanel::refreshRanges() {
-    const int top = maxLevel();
-    const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_);
-    lambdaSlider_->setRange(0, top * kSliderStepsPerLevel);
-    lambdaSpin_->setRange(0.0, top);
-    exponentSpin_->setRange(0.0, lambdaToExponent(0.0, faceSize()));
-    exponentSpin_->setToolTip(
-        tr("Phong exponent with the same lobe width as λ on a %1 base (phong.h); the base level, "
-           "λ 0, is n = %2 and reads \"mirror\"")
-            .arg(QString::number(faceSize()) + QStringLiteral("²"))
-            .arg(lambdaToExponent(0.0, faceSize()), 0, 'f', 0));
 }
 
 void MaterialPanel::refreshMaterial() {
     const bool valid = document_->isValidIndex(document_->selected());
     const Material m = valid ? document_->object(document_->selected()).material : Material{};
-    const double lambda = std::clamp(static_cast<double>(m.lambda), 0.0,
-                                     static_cast<double>(maxLevel()));
+    // The document holds only valid λ (scene_document.h); the clamp is for display alone.
+    const double lambda = std::clamp(static_cast<double>(m.lambda), 0.0, kMaxLambda);
     const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_), b4(mode_),
         b5(irradiance_), b6(grazing_);
-    lambdaSlider_->setValue(static_cast<int>(std::lround(lambda * kSliderStepsPerLevel)));
+    lambdaSlider_->setValue(static_cast<int>(std::lround(lambda * kSliderStepsPerLambda)));
     lambdaSpin_->setValue(lambda);
-    exponentSpin_->setValue(lambdaToExponent(lambda, faceSize()));
+    // "mirror" only for λ = 0 itself: the sharpest λ > 0 shows just below the box's top.
+    const double shownStep = std::pow(10.0, -exponentSpin_->decimals());
+    exponentSpin_->setValue(lambda > 0.0 ? std::min(lambdaToExponent(lambda), kExponentBoxTop - shownStep)
+                                         : kExponentBoxTop);
     mode_->setCurrentIndex(mode_->findData(static_cast<int>(m.mode)));
     irradiance_->setChecked(m.useIrradiance);
     irradiance_->setEnabled(m.mode == LookupMode::Normal);
@@ -332,10 +326,14 @@ void MaterialPanel::editTransform(const std::function<void(Transform&)>& edit) {
 }
 
 void MaterialPanel::setLambda(double lambda) {
-    if (std::isnan(lambda)) return;
-    const double clamped = std::clamp(lambda, 0.0, static_cast<double>(maxLevel()));
-    editMaterial([clamped](Material& m) { m.lambda = static_cast<float>(clamped); });
-    // A value the document already had (e.g. a clamped one) emits nothing: show it anyway.
+    // The widgets' ranges keep λ in [0, kMaxLambda]; never send the document anything else.
+    if (!isValidLambda(lambda)) {
+        refreshMaterial();
+        return;
+    }
+    editMaterial([lambda](Material& m) { m.lambda = static_cast<float>(lambda); });
+    // A value the document already had (e.g. the same λ reached from a rounded exponent) emits
+    // nothing: show the document's λ anyway.
     refreshMaterial();
 }
 

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/scene_document.h"
 
+#include "mipgloss/ibl/phong.h"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -8,10 +10,17 @@ namespace mipgloss::ui {
 
 namespace {
 
-// The document never holds a λ outside [0, kMaxLambda] or a NaN one; the tint is kept
-// non-negative and finite (it multiplies linear HDR colour).
+bool validLambda(float lambda) { return isValidLambda(static_cast<double>(lambda)); }
+
+// A λ for an object or display arriving without a previous value (addObject, resetScene):
+// outside [0, kMaxLambda] it becomes the nearest end, NaN the mirror.
+float admittedLambda(float lambda) {
+    if (std::isnan(lambda)) return 0.0f;
+    return std::clamp(lambda, 0.0f, static_cast<float>(kMaxLambda));
+}
+
+// The tint is kept non-negative and finite (it multiplies linear HDR colour).
 Material sanitized(Material m) {
-    m.lambda = std::isfinite(m.lambda) ? std::clamp(m.lambda, 0.0f, kMaxLambda) : 0.0f;
     for (int c = 0; c < 3; ++c)
         m.tint[c] = std::isfinite(m.tint[c]) ? std::max(m.tint[c], 0.0f) : 1.0f;
     return m;
@@ -29,6 +38,7 @@ SceneDocument::SceneDocument(QObject* parent) : QObject(parent) {}
 
 int SceneDocument::addObject(SceneObject object) {
     object.material = sanitized(object.material);
+    object.material.lambda = admittedLambda(object.material.lambda);
     scene_.objects.push_back(std::move(object));
     const int index = objectCount() - 1;
     emit objectsChanged();
@@ -69,8 +79,9 @@ int SceneDocument::duplicateObject(int index) {
 
 void SceneDocument::setMaterial(int index, const Material& material) {
     if (!isValidIndex(index)) return;
-    const Material m = sanitized(material);
     Material& current = scene_.objects[static_cast<std::size_t>(index)].material;
+    Material m = sanitized(material);
+    if (!validLambda(m.lambda)) m.lambda = current.lambda;  // refused: the last good λ stays
     if (current == m) return;
     current = m;
     emit materialChanged(index);
@@ -113,14 +124,21 @@ void SceneDocument::setEnvironment(const EnvironmentSettings& settings) {
 }
 
 void SceneDocument::setDisplay(const DisplaySettings& settings) {
-    if (scene_.display == settings) return;
-    scene_.display = settings;
+    DisplaySettings d = settings;
+    if (!validLambda(d.backgroundLambda))
+        d.backgroundLambda = scene_.display.backgroundLambda;  // refused: the last good λ stays
+    if (scene_.display == d) return;
+    scene_.display = d;
     emit displayChanged();
     emit changed();
 }
 
 void SceneDocument::resetScene(Scene scene) {
-    for (SceneObject& o : scene.objects) o.material = sanitized(o.material);
+    for (SceneObject& o : scene.objects) {
+        o.material = sanitized(o.material);
+        o.material.lambda = admittedLambda(o.material.lambda);
+    }
+    scene.display.backgroundLambda = admittedLambda(scene.display.backgroundLambda);
     const bool environmentDiffers = !(scene_.environment == scene.environment);
     const bool displayDiffers = !(scene_.display == scene.display);
     const int before = selected_;

@@ -1,6 +1,7 @@
 #include "mipgloss/ui/scene_file.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/phong.h"
 
 #include <QFile>
 #include <QJsonArray>
@@ -32,6 +33,10 @@ constexpr const char* kBuiltinSphere = "builtin:sphere";
 constexpr int kMinFaceSize = 4, kMaxFaceSize = 4096;
 constexpr int kMaxSamples = 16;
 constexpr double kMaxExposureEv = 20.0;
+// Version 1 clamped λ to [0, 16] (its old kMaxLambda), so it may hold anything in there.
+constexpr double kLegacyMaxLambda = 16.0;
+// "phongExponent" agrees with λ when within this relative difference (see scene_file.h).
+constexpr double kExponentTolerance = 1e-4;
 
 bool isBuiltin(const std::string& s) { return s.rfind(kBuiltinPrefix, 0) == 0; }
 
@@ -44,6 +49,13 @@ std::string show(T value) {
     std::ostringstream out;
     out << value;
     return out.str();
+}
+
+// A JSON value as it appears in the file, for error messages: 3, "abc", null, [1,2], {...}.
+std::string jsonText(const QJsonValue& v) {
+    if (v.isObject()) return "an object";
+    const QByteArray text = QJsonDocument(QJsonArray{v}).toJson(QJsonDocument::Compact);
+    return text.mid(1, text.size() - 2).toStdString();  // without the array's brackets
 }
 
 fs::path absoluteNormal(const fs::path& p) {
@@ -60,6 +72,12 @@ public:
     Reader(const fs::path& file, SceneFileReport* report) : file_(file), report_(report) {}
 
     [[noreturn]] void fail(const std::string& reason) const { throw SceneFileError(file_, reason); }
+
+    // How λ is read: version 1 files meant a mip level of their own face size (scene_file.h).
+    void setLambdaMeaning(int version, int faceSize) {
+        legacyLambda_ = version <= kSceneVersionLegacyLambda;
+        legacyFaceSize_ = faceSize;
+    }
 
     void warn(const std::string& text) const {
         if (report_) report_->warnings.push_back(file_.string() + ": " + text);
@@ -179,9 +197,7 @@ public:
         DisplaySettings d;
         const std::string where = "display";
         d.showBackground = boolean(o, "showBackground", where, d.showBackground);
-        d.backgroundLambda = clamped(static_cast<float>(number(o, "backgroundLambda", where,
-                                                               d.backgroundLambda)),
-                                     0.0f, kMaxLambda, "display.backgroundLambda");
+        d.backgroundLambda = static_cast<float>(lambdaValue(o, "backgroundLambda", where));
         d.exposureEv = static_cast<float>(clamped(number(o, "exposureEv", where, d.exposureEv),
                                                   -kMaxExposureEv, kMaxExposureEv,
                                                   "display.exposureEv"));
@@ -200,9 +216,8 @@ public:
 
     Material material(const QJsonObject& o, const std::string& where) const {
         Material m;
-        const double lambda = number(o, "lambda", where, m.lambda);
-        m.lambda = static_cast<float>(clamped(lambda, 0.0, static_cast<double>(kMaxLambda),
-                                              where + ".lambda"));
+        m.lambda = static_cast<float>(lambdaValue(o, "lambda", where));
+        if (!legacyLambda_) checkExponent(o, where, m.lambda);
         const std::string reflect = lookupModeName(LookupMode::Reflect);
         const std::string mode = string(o, "mode", where, &reflect);
         if (!parseLookupMode(mode, m.mode)) fail("unknown \"" + where + ".mode\" \"" + mode + "\"");
@@ -212,6 +227,49 @@ public:
             fail("\"" + where + ".tint\" has a negative component");
         m.sharperAtGrazing = boolean(o, "sharperAtGrazing", where, m.sharperAtGrazing);
         return m;
+    }
+
+    // A λ (a material's or the background's) in today's meaning: an error unless the file holds a
+    // number in its version's range, converted from a version 1 file's face size (scene_file.h).
+    double lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) return 0.0;
+        const std::string name = keyName(where, key);
+        const double top = legacyLambda_ ? kLegacyMaxLambda : kMaxLambda;
+        const std::string range = "a blur λ must be a number in [0, " + show(top) + "]" +
+                                  (legacyLambda_ ? " in a version 1 file" : "");
+        if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + range);
+        const double stored = v.toDouble();
+        if (!(std::isfinite(stored) && stored >= 0.0 && stored <= top))
+            fail("\"" + name + "\" is " + show(stored) + ": " + range);
+        if (!legacyLambda_) return stored;
+        if (stored == 0.0) return 0.0;  // the mirror under any face size
+        return exponentToLambda(legacyLambdaToExponent(stored, legacyFaceSize_));
+    }
+
+    // "phongExponent" beside a version 2 material's λ: information, validated, checked for
+    // agreement with a warning (scene_file.h).
+    void checkExponent(const QJsonObject& o, const std::string& where, float lambda) const {
+        const QJsonValue v = o.value(QLatin1String("phongExponent"));
+        if (v.isUndefined()) return;
+        const std::string name = keyName(where, "phongExponent");
+        const std::string rule = "a Phong exponent must be a finite number >= 0, or null for the mirror";
+        double n = kMirrorExponent;
+        if (!v.isNull()) {
+            if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + rule);
+            n = v.toDouble();
+            if (!std::isfinite(n) || !isValidExponent(n))
+                fail("\"" + name + "\" is " + show(n) + ": " + rule);
+        }
+        const double expected = lambdaToExponent(static_cast<double>(lambda));
+        const bool agree =
+            std::isinf(n) ? std::isinf(expected)
+                          : std::isfinite(expected) &&
+                                std::abs(n - expected) <= kExponentTolerance * std::max(1.0, expected);
+        if (!agree)
+            warn("\"" + name + "\" " + jsonText(v) + " disagrees with \"" + keyName(where, "lambda") +
+                 "\" " + show(lambda) + " (n = " +
+                 (std::isinf(expected) ? std::string("mirror") : show(expected)) + "); using the λ");
     }
 
     Transform transform(const QJsonObject& o, const std::string& where) const {
@@ -261,6 +319,8 @@ public:
 private:
     fs::path file_;
     SceneFileReport* report_;
+    bool legacyLambda_ = false;
+    int legacyFaceSize_ = kLambdaReferenceSize;
     std::map<std::string, std::shared_ptr<const Mesh>> cache_;
 };
 
@@ -303,8 +363,10 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
     QJsonArray objects;
     for (const SceneObject& o : scene.objects) {
         const Material& m = o.material;
+        const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
         QJsonObject material{
             {"lambda", m.lambda},
+            {"phongExponent", std::isinf(exponent) ? QJsonValue(QJsonValue::Null) : QJsonValue(exponent)},
             {"mode", lookupModeName(m.mode)},
             {"useIrradiance", m.useIrradiance},
             {"tint", toArray(m.tint)},
@@ -350,6 +412,7 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
 
     Scene scene;
     scene.environment = reader.environment(reader.object(root, "environment", "environment", false));
+    reader.setLambdaMeaning(version, scene.environment.faceSize);
     scene.display = reader.display(reader.object(root, "display", "display", false));
 
     const QJsonValue objects = root.value("objects");
@@ -377,9 +440,19 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
 }
 
 void saveScene(const Scene& scene, const fs::path& file) {
-    for (const SceneObject& o : scene.objects)
+    // Never write a file that would not load again.
+    auto checkLambda = [&](float lambda, const std::string& where) {
+        if (!isValidLambda(static_cast<double>(lambda)))
+            throw SceneFileError(file, "cannot save \"" + where + "\" " + show(lambda) +
+                                           ": a blur λ must be in [0, " + show(kMaxLambda) + "]");
+    };
+    checkLambda(scene.display.backgroundLambda, "display.backgroundLambda");
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
         if (o.meshSource.empty())
             throw SceneFileError(file, "object \"" + o.name + "\" has no mesh file to refer to");
+        checkLambda(o.material.lambda, "objects[" + std::to_string(i) + "].material.lambda");
+    }
     QSaveFile out(QString::fromStdString(file.string()));
     if (!out.open(QIODevice::WriteOnly))
         throw SceneFileError(file, "cannot write: " + out.errorString().toStdString());

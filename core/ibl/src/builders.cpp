@@ -21,8 +21,8 @@ namespace {
 // rest moves by at most 0.1 % of the local contrast (docs/chain-schedule.md).
 constexpr double kPhongCutoff = 1e-3;
 // The pyramid's coarsest useful level, and the lobe cubes' size limits.
-constexpr int kMinSourceSize = 64;
-constexpr int kMinLobeCubeSize = 8;
+constexpr int kMinSourceSize = 32;
+constexpr int kMinLobeCubeSize = 16;
 constexpr int kMaxLobeCubeSize = 1024;
 // Faces from this size on are filtered at half size and interpolated (PhongFilter::filter).
 constexpr int kUpsampleFromSize = 256;
@@ -268,7 +268,7 @@ int PhongFilter::baseSize() const { return impl_->baseSize; }
 
 CubeMap PhongFilter::filter(double exponent, int size) const {
     // The coarsest pyramid level whose texels are at most about half the lobe's σ (a face of
-    // √(8n) texels: 1.57/√(8n) rad = 0.55 σ), and never below 64²: measured in
+    // √(8n) texels: 1.57/√(8n) rad = 0.55 σ), and never below 32²: measured in
     // docs/chain-schedule.md, these sources cost under 0.3 % of the between-centres error.
     const double wanted = std::max(static_cast<double>(kMinSourceSize), std::ceil(std::sqrt(8.0 * exponent)));
     std::size_t j = 0;

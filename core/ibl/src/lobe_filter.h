@@ -84,7 +84,7 @@ FaceGrid convolveGrid(const LobeSource& src, double exponent, int size, int bord
 // The same on a cube of outSize, borders filled.
 CubeMap convolve(const LobeSource& src, double exponent, int outSize, double cutoff);
 
-// The same sum evaluated on the half-size grid (with a two-texel border beyond the face edges)
+// The same sum evaluated on the half-size grid (with a six-texel border beyond the face edges)
 // and brought to outSize (even) by cubic B-spline interpolation, clamped at 0: a quarter of the
 // cost, for lobes at least 3 output texels wide (σ), whose half-size samples are far above
 // their Nyquist rate (docs/chain-schedule.md measures what it costs).

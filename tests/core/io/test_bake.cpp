@@ -72,19 +72,33 @@ double numberField(const std::string& json, const std::string& key) {
     return std::stod(m[1]);
 }
 
+// A manifest number: a JSON number, or null (NaN here).
+double jsonNumberOrNull(const std::string& text) { return text == "null" ? std::nan("") : std::stod(text); }
+
 struct ManifestLevel {
     int level = -1, size = -1;
-    double lambda = std::nan(""), phongExponent = std::nan("");
+    bool read = false;
+    std::string phongExponentText, lambdaText;  // as written: a number or "null"
+    double phongExponent = std::nan(""), lambda = std::nan("");
     std::string dir;
 };
 std::vector<ManifestLevel> manifestLevels(const std::string& json) {
     std::vector<ManifestLevel> levels;
     const std::regex entry(
-        "\\{\"level\": ([0-9]+), \"size\": ([0-9]+), \"lambda\": ([-+0-9.eE]+), \"phong_exponent\": ([-+0-9.eE]+), "
-        "\"dir\": \"([^\"]*)\"\\}");
+        "\\{\"level\": ([0-9]+), \"size\": ([0-9]+), \"read\": (true|false), \"phong_exponent\": (null|[-+0-9.eE]+), "
+        "\"lambda\": (null|[-+0-9.eE]+), \"dir\": \"([^\"]*)\"\\}");
     for (auto it = std::sregex_iterator(json.begin(), json.end(), entry); it != std::sregex_iterator(); ++it) {
         const std::smatch& m = *it;
-        levels.push_back({std::stoi(m[1]), std::stoi(m[2]), std::stod(m[3]), std::stod(m[4]), m[5]});
+        ManifestLevel l;
+        l.level = std::stoi(m[1]);
+        l.size = std::stoi(m[2]);
+        l.read = m[3] == "true";
+        l.phongExponentText = m[4];
+        l.lambdaText = m[5];
+        l.phongExponent = jsonNumberOrNull(m[4]);
+        l.lambda = jsonNumberOrNull(m[5]);
+        l.dir = m[6];
+        levels.push_back(l);
     }
     return levels;
 }
@@ -137,15 +151,36 @@ void expectBakeFolder(const fs::path& out, const BakeSummary& summary, const Mip
         EXPECT_EQ(l.size, levelSize(n, k));
         EXPECT_EQ(l.size, chain.levels[static_cast<std::size_t>(k)].size());
         EXPECT_EQ(l.dir, "level" + std::to_string(k));
-        EXPECT_EQ(l.lambda, static_cast<double>(k)) << "level k is λ = k";
-        // The manifest prints 10 significant digits: relative tolerance 1e-9 (the rounding is at
-        // most 5e-10), plus 1e-12 absolute for n = 0 at the clamp.
-        const double declared = lambdaToExponent(static_cast<double>(k), n);
-        EXPECT_NEAR(l.phongExponent, declared, 1e-9 * declared + 1e-12);
-        // And the mapping itself, written out: n = 3 N² 4^-λ − 1, clamped at 0 (phong.h).
-        const double analytic = std::max(0.0, 3.0 * n * n * std::pow(4.0, -k) - 1.0);
-        EXPECT_NEAR(l.phongExponent, analytic, 1e-9 * analytic + 1e-12);
-        EXPECT_EQ(summary.levels[static_cast<std::size_t>(k)].phongExponent, declared);
+        // The schedule (phong.h): levels 0..lastReadLevel are read, the rest are box steps.
+        const int last = lastReadLevel(n);
+        const BakedLevel& summaryLevel = summary.levels[static_cast<std::size_t>(k)];
+        EXPECT_EQ(l.read, k <= last);
+        EXPECT_EQ(summaryLevel.read, k <= last);
+        if (k == 0) {
+            // The mirror: n = ∞ is written as null, its λ is 0.
+            EXPECT_EQ(l.phongExponentText, "null");
+            EXPECT_EQ(summaryLevel.phongExponent, kMirrorExponent);
+            EXPECT_EQ(l.lambda, 0.0);
+        } else if (k <= last) {
+            // The manifest prints 10 significant digits: relative tolerance 1e-9 (the rounding is
+            // at most 5e-10 of the value).
+            const double declared = levelExponent(n, k);
+            EXPECT_NEAR(l.phongExponent, declared, 1e-9 * declared);
+            EXPECT_EQ(summaryLevel.phongExponent, declared);
+            // Written out: M²/32 for a face of M >= 16, 1 at the last read level.
+            const double analytic = k == last ? 1.0 : static_cast<double>(l.size) * l.size / 32.0;
+            EXPECT_EQ(declared, analytic);
+            // λ is the fixed-meaning λ of that lobe (exponentToLambda), and maps back to it.
+            const double lambda = exponentToLambda(declared);
+            EXPECT_NEAR(l.lambda, lambda, 1e-9 * lambda);
+            EXPECT_EQ(summaryLevel.lambda, lambda);
+            EXPECT_NEAR(lambdaToExponent(l.lambda), declared, 1e-8 * declared);
+        } else {
+            EXPECT_EQ(l.phongExponentText, "null") << "never read: no lobe";
+            EXPECT_EQ(l.lambdaText, "null");
+            EXPECT_TRUE(std::isnan(summaryLevel.phongExponent));
+            EXPECT_TRUE(std::isnan(summaryLevel.lambda));
+        }
     }
     if (irradiance) {
         EXPECT_NE(json.find("\"irradiance\": {\"dir\": \"irradiance\", \"face_size\": " +

@@ -2,8 +2,12 @@
 #include "test_support.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/metrics.h"
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/io/default_env.h"
 #include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +16,9 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <vector>
 
 #include <string>
 
@@ -107,21 +114,129 @@ Scene sceneWith(std::initializer_list<Material> materials) {
     return scene;
 }
 
-TEST(ChainNeeds, FollowTheHighestLambdaInUse) {
-    const int levels = 8;  // 128²
-    EXPECT_EQ(chainNeeds(makeFigure1Scene(), levels), (ChainNeeds{7, false}));
-    EXPECT_EQ(chainNeeds(sceneWith({Material{}}), levels), (ChainNeeds{0, false})) << "mirrors only";
-    EXPECT_EQ(chainNeeds(sceneWith({Material{3.2f}}), levels).lastFilteredLevel, 4) << "3.2 blends 3 and 4";
-    EXPECT_EQ(chainNeeds(sceneWith({Material{40.0f}}), levels).lastFilteredLevel, 7) << "clamped";
+// The deepest chain level a λ is read at on a base of `n`, rounded up (what chainNeeds promises).
+int levelFor(float lambda, int n) {
+    return static_cast<int>(std::ceil(chainLevelForExponent(lambdaToExponent(lambda), n) - 1e-9));
+}
+
+TEST(ChainNeeds, FollowTheDeepestLobeInUse) {
+    // The argument is the base face size. At 128 the read levels hold n = ∞, 128, 32, 8, 1.
+    const int base = 128;
+    // Figure 1: background λ 2 (n = 3071), teapots λ 0, 3.5 (n = 383), 5 (n = 47) and 7 (n = 2,
+    // normal mode on the chain): n = 2 lies between levels 3 (n = 8) and 4 (n = 1), so level 4.
+    EXPECT_EQ(levelFor(7.0f, base), 4);
+    EXPECT_EQ(levelFor(5.0f, base), 2) << "n = 47 lies between 128 and 32";
+    EXPECT_EQ(levelFor(3.5f, base), 1);
+    EXPECT_EQ(levelFor(2.0f, base), 1);
+    EXPECT_EQ(chainNeeds(makeFigure1Scene(), base), (ChainNeeds{4, false}));
+    EXPECT_EQ(chainNeeds(makeFigure1Scene(), 512), (ChainNeeds{6, false})) << "n = 2 between 8 and 1 at 512";
+    EXPECT_EQ(chainNeeds(makeFigure1Scene(), 16), (ChainNeeds{1, false})) << "16: one read level";
+    EXPECT_EQ(needsFor(makeFigure1Scene(), base), chainNeeds(makeFigure1Scene(), base));
+    Scene noBackground = sceneWith({Material{}});
+    noBackground.display.showBackground = false;
+    EXPECT_EQ(chainNeeds(noBackground, base), (ChainNeeds{0, false})) << "mirrors only";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{}}), base), (ChainNeeds{0, false})) << "a sharp background too";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{3.2f}}), base).lastFilteredLevel, 1) << "n = 581 blends 0 and 1";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{6.0f}}), base).lastFilteredLevel, 3) << "n = 11 blends 2 and 3";
+    EXPECT_EQ(chainNeeds(sceneWith({Material{40.0f}}), base).lastFilteredLevel, 4) << "n = 0: the last read level";
     Scene hidden = sceneWith({Material{1.0f}, Material{6.0f}});
     hidden.objects[1].visible = false;
-    EXPECT_EQ(chainNeeds(hidden, levels).lastFilteredLevel, 1) << "hidden objects need nothing";
+    EXPECT_EQ(chainNeeds(hidden, base).lastFilteredLevel, 1) << "hidden objects need nothing";
     Scene background = sceneWith({Material{1.0f}});
-    background.display.backgroundLambda = 2.5f;
-    EXPECT_EQ(chainNeeds(background, levels).lastFilteredLevel, 3) << "the background's blur counts";
+    background.display.backgroundLambda = 6.0f;
+    EXPECT_EQ(chainNeeds(background, base).lastFilteredLevel, 3) << "the background's blur counts";
+    background.display.showBackground = false;
+    EXPECT_EQ(chainNeeds(background, base).lastFilteredLevel, 1) << "not when hidden";
     Material irradiance{7.0f, LookupMode::Normal, true};
-    EXPECT_EQ(chainNeeds(sceneWith({Material{2.0f}, irradiance}), levels), (ChainNeeds{2, true}))
+    EXPECT_EQ(chainNeeds(sceneWith({Material{5.0f}, irradiance}), base), (ChainNeeds{2, true}))
         << "the irradiance map replaces the chain for that object";
+    for (float lambda = 0.0f; lambda <= 8.0f; lambda += 0.25f)
+        for (int n : {16, 96, 128, 200, 512}) {
+            const int level = chainNeeds(sceneWith({Material{lambda}}), n).lastFilteredLevel;
+            EXPECT_EQ(level, levelFor(lambda, n)) << "λ " << lambda << " base " << n;
+            EXPECT_LE(level, lastReadLevel(n));
+        }
+}
+
+TEST(Lobes, InUseAreTheDistinctBlurredLobesTheSceneShows) {
+    Material normalOnChain{7.0f, LookupMode::Normal, false};
+    Material irradiance{6.0f, LookupMode::Normal, true};
+    Scene scene = sceneWith({Material{0.0f}, Material{3.5f}, Material{3.5f}, Material{5.0f}, Material{2.5f},
+                             Material{3.5004f}, normalOnChain, irradiance, Material{9.0f}});
+    scene.objects[4].visible = false;
+    scene.display.backgroundLambda = 2.0f;
+    ASSERT_EQ(scene.environment.builder, Builder::Phong);
+    // Mirror (λ 0), hidden (2.5), irradiance (6) and invalid (9 > kMaxLambda) excluded; 3.5004
+    // shares 3.5's key (within 1/2048); the background's 2 counts; ascending.
+    EXPECT_EQ(lobeKey(3.5004f), lobeKey(3.5f));
+    EXPECT_EQ(lobesInUse(scene), (std::vector<int>{2048, 3584, 5120, 7168}));
+    scene.display.showBackground = false;
+    EXPECT_EQ(lobesInUse(scene), (std::vector<int>{3584, 5120, 7168})) << "a hidden background";
+    scene.display.showBackground = true;
+    scene.display.backgroundLambda = 0.0f;
+    EXPECT_EQ(lobesInUse(scene), (std::vector<int>{3584, 5120, 7168})) << "a sharp background";
+    scene.environment.builder = Builder::Box;
+    EXPECT_TRUE(lobesInUse(scene).empty()) << "other builders are shown as they are";
+    EXPECT_TRUE(lobesInUse(sceneWith({Material{0.0f}})).empty());
+}
+
+TEST(Lobes, LobeCubeIsTheExactConvolutionAtItsCentres) {
+    EnvironmentSettings settings;
+    settings.faceSize = 32;
+    const PreparedEnvironment env = prepareEnvironment(settings, ChainNeeds{0, false});
+    ASSERT_TRUE(env.filter) << "the default builder keeps its filter";
+    EXPECT_EQ(env.filter->baseSize(), 32);
+    // λ 5 (n = 47, a face of ceil(√(32·47)) = 39) and 7 (n = 2: 8, the smallest): held at full
+    // width. λ 1 (n = 12287) would need 628: capped at 2N = 64, not held.
+    struct Case {
+        float lambda;
+        int size;
+        bool holds;
+    };
+    for (const Case c : {Case{5.0f, 39, true}, Case{7.0f, 8, true}, Case{1.0f, 64, false}}) {
+        SCOPED_TRACE("λ " + std::to_string(c.lambda));
+        const LobeCube lobe = makeLobeCube(env, lobeKey(c.lambda));
+        EXPECT_EQ(lobe.key, lobeKey(c.lambda));
+        EXPECT_EQ(lobe.exponent, lambdaToExponent(c.lambda));
+        ASSERT_TRUE(lobe.cube);
+        EXPECT_EQ(lobe.cube->size(), lobeCubeSize(lobe.exponent, 32));
+        EXPECT_EQ(lobe.cube->size(), c.size);
+        EXPECT_EQ(lobe.holdsLobe, c.holds);
+        EXPECT_EQ(lobe.filter, env.filter);
+        // The base is its own 32² source (the pyramid stops at 64²): what differs from the
+        // exact sum is the lobe cut at 1e-3 and float weights. Measured rel RMS 0.070 % (λ 5),
+        // 0.003 % (λ 7), 0.057 % (λ 1), means within 0.001 %; bounds 0.5 % and 0.1 %.
+        const LevelError e = compareCubes(*lobe.cube, referenceConvolution(*env.base, lobe.exponent, lobe.cube->size()));
+        EXPECT_LE(e.relRms, 0.005);
+        EXPECT_LE(std::fabs(e.meanRelDiff), 0.001);
+    }
+    EnvironmentSettings box = settings;
+    box.builder = Builder::Box;
+    EXPECT_FALSE(prepareEnvironment(box, ChainNeeds{0, false}).filter) << "only the default builder keeps one";
+    PreparedEnvironment none;
+    EXPECT_THROW(makeLobeCube(none, 1024), std::logic_error);
+}
+
+TEST(Lobes, TheSameLambdaShowsTheSameLobeAtAnyFaceSize) {
+    // λ has one meaning (phong.h): the embedded default imported at 128 and at 512, a λ = 4 lobe
+    // (n = 191, cube of 79 at both) from each, read at 1500 uniform directions. Measured 0.24 %
+    // relative RMS (what the 128² import lacks of the 512² one); bound 3 %. Under the old meaning (n = 3·N²·4^−λ − 1) the 512 lobe would
+    // be n = 3071, 16× sharper.
+    PreparedEnvironment small, large;
+    small.filter = std::make_shared<const PhongFilter>(loadDefaultEnvironment(128).cube);
+    large.filter = std::make_shared<const PhongFilter>(loadDefaultEnvironment(512).cube);
+    const LobeCube a = makeLobeCube(small, lobeKey(4.0f)), b = makeLobeCube(large, lobeKey(4.0f));
+    EXPECT_EQ(a.exponent, 191.0);
+    EXPECT_EQ(a.cube->size(), 79);
+    EXPECT_EQ(b.cube->size(), 79);
+    const auto dirs = uniformDirections(1500);
+    std::vector<Rgb> readA, readB;
+    for (const glm::vec3& d : dirs) {
+        readA.push_back(a.cube->sample(d));
+        readB.push_back(b.cube->sample(d));
+    }
+    const double diff = relativeRms(readA, readB);
+    EXPECT_LE(diff, 0.03);
 }
 
 TEST(PrepareEnvironment, BuildsOnlyWhatTheSceneNeedsAndReusesTheRest) {

@@ -1,11 +1,14 @@
 // Edits the selected object's material and placement through the SceneDocument.
 //
-// λ is shown three ways, kept in step: a slider (steps of 1/20 of a level), a spin box, and the
-// equivalent Phong exponent n = lambdaToExponent(λ, N) (phong.h), N the environment's base face
-// size from the document. The exponent is editable: typing n sets λ = exponentToLambda(n, N). The
-// sharpest λ = 0 stands for n = 3N² − 1 (the base level's texel), shown as "mirror"; the
-// exponent's range is [0, 3N² − 1], λ's is [0, last level of the chain], so no widget can produce
-// a λ outside [0, kMaxLambda].
+// λ is shown three ways, kept in step: a slider (steps of 1/20), a spin box, and the equivalent
+// Phong exponent n = lambdaToExponent(λ) (phong.h). λ has one meaning whatever the environment:
+// the same lobe under any environment and face size, each +1 a lobe twice as wide (n about 4×
+// smaller); the panel never looks at the environment. All three cover λ in [0, kMaxLambda]. The
+// exponent is editable: typing n sets λ = exponentToLambda(n). λ = 0 is a true mirror (n = ∞),
+// shown as "mirror", and typing "mirror" (or "inf", "∞") asks for it; the largest finite n,
+// 3·128² − 1 (the limit as λ → 0), is the box's top and means the mirror too. n = 0 (a uniform
+// hemisphere) is λ ≈ 7.79, and every λ beyond it up to kMaxLambda shows n = 0. So no widget can
+// produce a λ outside [0, kMaxLambda] or a NaN one.
 //
 // The spin boxes commit on Enter, focus loss or arrow steps (no keyboard tracking): a half-typed
 // number never reaches the document. Widgets are refreshed from the document with their signals
@@ -46,16 +49,11 @@ class MaterialPanel : public QWidget {
 public:
     explicit MaterialPanel(SceneDocument* document, QWidget* parent = nullptr);
 
-    // Steps per mip level on the slider.
-    static constexpr int kSliderStepsPerLevel = 20;
-
-    // The base face size the exponent refers to, and the last level λ can reach.
-    int faceSize() const;
-    int maxLevel() const;
+    // Slider steps per unit of λ; the slider spans [0, kMaxLambda].
+    static constexpr int kSliderStepsPerLambda = 20;
 
 private:
     void refresh();          // everything from the document
-    void refreshRanges();    // λ and exponent ranges from the environment's face size
     void refreshMaterial();  // material widgets from the selected object
     void refreshTransform();
     void editMaterial(const std::function<void(Material&)>& edit);

@@ -1,6 +1,14 @@
 // The edited scene, shared by the window's panels and the viewport. Setters emit their signal only
 // when the value changes (Qt's setX / xChanged habit), so two-way bindings are safe. The scene
 // itself stays a plain value (mipgloss::Scene); meshes are shared, never copied, by duplicates.
+//
+// The document never holds an invalid λ (phong.h's isValidLambda: finite, in [0, kMaxLambda]).
+// setMaterial and setDisplay refuse one (NaN, negative, above kMaxLambda): the λ keeps its last
+// good value, the edit's other fields still apply, and nothing is emitted if nothing else
+// changed. The document has no error channel, so the refusal is silent; the widgets never send
+// such a value (material_panel.h, the window's background box) and scene files reject one on
+// load (scene_file.h). addObject and resetScene have no previous value to keep: they bring an
+// out-of-range λ to the nearest end of [0, kMaxLambda] and a NaN one to 0 (the mirror).
 #pragma once
 
 #include "mipgloss/scene/scene.h"

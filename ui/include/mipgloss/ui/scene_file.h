@@ -1,7 +1,7 @@
-// Scene files: JSON, format "mipgloss-scene", version 1.
+// Scene files: JSON, format "mipgloss-scene", version 2 (version 1 files still load, see below).
 //
 //   {
-//     "format": "mipgloss-scene", "version": 1,
+//     "format": "mipgloss-scene", "version": 2,
 //     "environment": {"source": "env/sky.exr" | "builtin:courtyard", "layout": "auto",
 //                     "handedness": "right", "faceSize": 128, "builder": "phong",
 //                     "rotationDegrees": 0},
@@ -10,9 +10,33 @@
 //     "objects": [{"name": "bunny", "mesh": "meshes/bunny.obj" | "builtin:teapot" | "builtin:sphere",
 //                  "visible": true,
 //                  "transform": {"translation": [x, y, z], "rotationDegrees": [x, y, z], "scale": 1},
-//                  "material": {"lambda": 3, "mode": "reflect" | "normal", "useIrradiance": false,
-//                               "tint": [r, g, b], "sharperAtGrazing": false}}]
+//                  "material": {"lambda": 3, "phongExponent": 767, "mode": "reflect" | "normal",
+//                               "useIrradiance": false, "tint": [r, g, b],
+//                               "sharperAtGrazing": false}}]
 //   }
+//
+// λ ("lambda", "backgroundLambda"). Version 2 stores λ with its one meaning (phong.h): the Phong
+// exponent n(λ) = lambdaToExponent(λ) = 3·128²·4^−λ − 1, the same lobe under any environment and
+// face size, λ = 0 the mirror. It must be a number in [0, kMaxLambda]; anything else (negative,
+// above kMaxLambda, a string, null) is an error naming the file, the key (e.g.
+// "objects[2].material.lambda") and the value, never a silent clamp. A missing key defaults to 0.
+//
+// "phongExponent" (version 2, written for every material) is information for a reader of the file:
+// lambdaToExponent(λ), null for the mirror (λ = 0). λ alone decides the look. On load it is
+// optional; when present it must be null or a finite number >= 0 (anything else is an error like
+// an absurd λ), and if it disagrees with λ (relative difference above 1e-4, or null against a
+// λ > 0, or a number against λ = 0) the report gets a warning naming the key; λ is used. So a
+// hand edit of "lambda" that forgets "phongExponent" still loads as the λ says.
+//
+// Version 1 files stored λ as the old per-environment blur, n = 3·N²·4^−λ − 1 against the base
+// face size N they were saved with ("environment.faceSize", after the face-size clamp below; 128
+// when absent). They load with the look they had: each material's λ and "display.backgroundLambda"
+// are converted by
+//     n = legacyLambdaToExponent(λ_old, N),   λ = exponentToLambda(n)
+// (λ_old = 0 stays 0, the mirror; a face size of 128 leaves λ unchanged; λ_old beyond the old
+// n = 0 point maps to n = 0, λ ≈ 7.79). Version 1 accepted λ_old in [0, 16] (its old limit);
+// values outside are errors as above. "phongExponent" is not read from version 1 files. Files are
+// always written as version 2.
 //
 // Paths: saved relative to the scene file's folder when the file lies inside it or at most two
 // levels above it (so a project folder moved as a whole keeps working), absolute otherwise; loaded
@@ -20,11 +44,12 @@
 // absolute paths (or builtin:...), so saving elsewhere relativises them afresh.
 //
 // Loading is all-or-nothing: the whole file is checked and every mesh loaded (a path used twice is
-// loaded once and shared) before a Scene is returned. Errors (SceneFileError: not JSON, wrong
-// format or version, a wrong type, a non-finite number, a missing or broken mesh file, a missing
-// environment file, an unknown name) name the scene file and the problem. Out-of-range values with
-// an obvious nearest one (λ outside [0, kMaxLambda], face size, samples, background λ, exposure)
-// are clamped with a warning in the report. Optional keys default to the values in scene.h.
+// loaded once and shared) before a Scene is returned, so a caller that replaces its scene only
+// with a returned one keeps its last good state on any error. Errors (SceneFileError: not JSON,
+// wrong format or version, a wrong type, a non-finite number, an absurd λ or exponent, a missing
+// or broken mesh file, a missing environment file, an unknown name) name the scene file and the
+// problem. Out-of-range settings with an obvious nearest one (face size, samples, exposure) are
+// clamped with a warning in the report. Optional keys default to the values in scene.h.
 #pragma once
 
 #include "mipgloss/io/file_error.h"
@@ -40,7 +65,9 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 1;
+inline constexpr int kSceneVersion = 2;
+// The version whose λ meant a mip level of the environment's own face size (see above).
+inline constexpr int kSceneVersionLegacyLambda = 1;
 
 class SceneFileError : public FileError {
 public:

@@ -6,8 +6,8 @@
 //
 //   phong      the default: level k is the normalized Phong convolution of the sphere at n_k,
 //              filtered across faces with exact solid angles, from the energy pyramid level whose
-//              texels are about half the lobe's σ (never coarser than 64², so a lobe wider than
-//              the pyramid's texels by far keeps 4 000+ source points); each pyramid texel keeps
+//              texels are about half the lobe's σ (never coarser than 32², so a lobe wider than
+//              the pyramid's texels by far keeps 6 000+ source points); each pyramid texel keeps
 //              its energy at its energy-weighted direction, so a sun stays where it is.
 //              O(N²) for the chain (docs/chain-schedule.md counts the taps and measures the error
 //              of each shortcut).
@@ -87,7 +87,7 @@ private:
 
 // The face size of a lobe cube: large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
 // reads between its centres stay within about 1 % (docs/chain-schedule.md), i.e. ceil(√(32 n)),
-// at least 8 and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
+// at least 16 (smooth enough that even the widest lobes show no texel structure) and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
 // more coarsely, and the renderer does not call them exact.
 int lobeCubeSize(double exponent, int baseSize);
 // True when lobeCubeSize holds the lobe at full width (√(32 n) fits under the cap).
