@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <functional>
 #include <string>
 #include <system_error>
@@ -39,6 +41,20 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+// A file's bytes as a string, and bytes written to a file.
+inline std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+inline void writeBytes(const std::filesystem::path& file, const std::string& bytes) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    ASSERT_TRUE(out.good()) << file;
+}
 
 // A cube whose texel centres hold f(direction).
 inline CubeMap cubeFromFunction(int size, const std::function<Rgb(const glm::vec3&)>& f) {

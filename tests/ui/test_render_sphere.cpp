@@ -1,6 +1,7 @@
-// The renderer against the CPU: a unit sphere drawn by OpenGL at λ = 0, 3, 5 and in normal mode
-// must match, pixel by pixel, the same lookup evaluated on the core's chain (same direction, same
-// level). This checks the whole GPU path: upload orientation, face order, GL_TEXTURE_MIN_LOD from
+// The renderer against the CPU: a unit sphere drawn by OpenGL at λ = 0, 5, 5.5, 6 and in normal
+// mode (λ 6 and the irradiance map), with no lobe cube bound (the picture while λ moves), must
+// match, pixel by pixel, the same lookup evaluated on the core's chain (same direction, the chain
+// level chainLevelForExponent gives for the material's lobe). This checks the whole GPU path: upload orientation, face order, GL_TEXTURE_MIN_LOD from
 // the sampler, trilinear blending, seamless filtering, the lookup vectors and the readback.
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/phong.h"

@@ -291,12 +291,15 @@ bool lobeCubeHoldsLobe(double exponent, int baseSize) {
     return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= cap;
 }
 
-MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options) {
+MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options, const PhongFilter* given) {
     const int n = base.size();
-    std::unique_ptr<PhongFilter> filter;  // made on the first filtered level
+    std::unique_ptr<PhongFilter> own;  // made on the first filtered level when none is given
     return buildConvolvedChain(base, options, [&](int k) {
-        if (!filter) filter = std::make_unique<PhongFilter>(base);
-        return filter->filter(levelExponent(n, k), levelSize(n, k));
+        if (!given) {
+            if (!own) own = std::make_unique<PhongFilter>(base);
+            given = own.get();
+        }
+        return given->filter(levelExponent(n, k), levelSize(n, k));
     });
 }
 

@@ -57,6 +57,14 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
     }
     out.settings.faceSize = out.base->size();
 
+    // The filter lobe cubes are made from: kept with the import, made for the default builder.
+    if (settings.builder == Builder::Phong) {
+        if (previous && previous->filter && previous->sameImport(settings))
+            out.filter = previous->filter;
+        else
+            out.filter = std::make_shared<const PhongFilter>(*out.base);
+    }
+
     // 2. The chain: kept when the builder matches and it is filtered deep enough. Otherwise built
     // with the filter through max(needed, what the previous chain had), so the range never shrinks
     // (going back and forth with a slider builds at most once per new level).
@@ -74,17 +82,11 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         BuildOptions options;
         options.lastFilteredLevel = through;
         options.progress = progress;
-        out.chain = std::make_shared<const MipChain>(buildChain(*out.base, settings.builder, options));
+        out.chain = std::make_shared<const MipChain>(
+            settings.builder == Builder::Phong ? buildPhongChain(*out.base, options, out.filter.get())
+                                               : buildChain(*out.base, settings.builder, options));
         out.lastFilteredLevel = through;
         out.buildSeconds = secondsSince(start);
-    }
-
-    // The filter lobe cubes are made from: kept with the import, made for the default builder.
-    if (settings.builder == Builder::Phong) {
-        if (previous && previous->filter && previous->sameImport(settings))
-            out.filter = previous->filter;
-        else
-            out.filter = std::make_shared<const PhongFilter>(*out.base);
     }
 
     // 3. Irradiance only when some object reads it; kept once made for this import.

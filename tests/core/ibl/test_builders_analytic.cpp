@@ -118,8 +118,9 @@ TEST(Builders, LinearEnvironmentGetsTheFunkHeckeGainAtEveryReadLevel) {
     // the schedule's exponents (levelExponent). The default builder's lobe is cut at 1e-3: its
     // exact answer is c + a·R·Λ₁cut(n), which differs from the full gain by at most 2.5e-4·|a|
     // (previous test). Against that, what is left is the builder's discretization: the base's
-    // texel centres (base 64, filtered directly), the 64² energy pyramid (base 128), and the
-    // half-size + cubic B-spline path (base 512, level 1 of 256²).
+    // energy pyramid from 32² up (bases 64 and 128), and the half-size + cubic B-spline path
+    // (base 512, level 1 of 256²). (Figures below measured with the pyramid's floor at 64²; the
+    // 32² floor it has now passes the same bounds.)
     // Measured max error / |a| against the cut gain: 7.5e-6–3.8e-5 at 64, 2.5e-5–1.3e-4 at 128,
     // 3.4e-5–2.8e-4 at 512 (against the full gain: up to 2.9e-4); the reference (cut 1e-10)
     // against the full gain 7e-6–3.6e-5. Tolerance 1e-3·|a| (the old one was 5e-3·|a|), and
@@ -226,7 +227,7 @@ TEST(Builders, LevelsBeyondTheLastReadOneAreBoxSteps) {
 
 TEST(Irradiance, LinearAndQuadraticEnvironmentsAreExact) {
     // E/π is the n = 1 lobe: Λ₁ = 2/3, Λ₂ = 1/4, Λ₃ = 0. Tolerance 1e-3 of the field's variation:
-    // the 64² source texels are 1/50 of the cosine lobe's width.
+    // the 32² source texels (irradiance.cpp) are 1/25 of the cosine lobe's width.
     const ShEnvironment env;
     const CubeMap base = test::cubeFromFunction(128, [&](const glm::vec3& d) {
         return Rgb(static_cast<float>(env.value(glm::dvec3(d))));

@@ -21,8 +21,8 @@ using namespace mipgloss;
 
 namespace {
 const char* kMaps[] = {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"};
-// Every map at 64 (levels 1–3: n = 32, 8, 1, filtered from the base itself) and the two with a
-// sun at 128 (levels 1–4: n = 128, 32, 8, 1, from the 64² energy pyramid). The exact convolution
+// Every map at 64 (levels 1–3: n = 32, 8, 1) and the two with a sun at 128 (levels 1–4: n = 128,
+// 32, 8, 1), all filtered from the 32² energy pyramid level. The exact convolution
 // of a wide lobe costs a sum over half the sphere per texel: all eight maps at 128 would take
 // about 100 s here, these ten chains about 30 s.
 struct Case {

@@ -13,6 +13,7 @@
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/io/import.h"
+#include "core/between_centres_support.h"
 #include "test_support.h"
 
 #include <cmath>
@@ -23,32 +24,13 @@ using namespace mipgloss;
 
 namespace {
 
-int directionCount(double n) { return n >= 64.0 ? 1500 : n > 8.0 ? 600 : 300; }
-
-std::vector<Rgb> readAt(const MipChain& chain, double lod, const std::vector<glm::vec3>& dirs) {
-    std::vector<Rgb> out(dirs.size());
-    for (std::size_t i = 0; i < dirs.size(); ++i) out[i] = sampleChain(chain, dirs[i], lod);
-    return out;
-}
-
 void expectReadsBetweenCentres(const std::string& map, int size) {
     const auto path = test::asset("env/" + map + ".exr");
     MIPGLOSS_REQUIRE_ASSET(path);
     ImportOptions o;
     o.faceSize = size;
     const CubeMap base = loadEnvironment(path, o).cube;
-    const MipChain phong = buildPhongChain(base);
-    const MipChain box = buildBoxChain(base);
-    for (int k = 1; k <= lastReadLevel(size); ++k) {
-        SCOPED_TRACE(map + " base " + std::to_string(size) + " level " + std::to_string(k));
-        const double n = levelExponent(size, k);
-        const auto dirs = uniformDirections(directionCount(n));
-        const std::vector<Rgb> truth = referenceLobeAt(base, n, dirs);
-        const double err = relativeRms(readAt(phong, k, dirs), truth);
-        const double boxErr = relativeRms(readAt(box, k, dirs), truth);
-        EXPECT_LE(err, 0.02);
-        EXPECT_GT(boxErr, 3.0 * err);
-    }
+    test::expectReadsBetweenCentres(base, map);
 }
 
 }  // namespace

@@ -31,18 +31,8 @@ using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 using test::TempDir;
 
-std::string readText(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void writeBytes(const fs::path& file, const std::string& bytes) {
-    std::ofstream out(file, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    ASSERT_TRUE(out.good()) << file;
-}
+using test::readText;
+using test::writeBytes;
 
 template <typename T>
 void append(std::string& bytes, const T& value) {

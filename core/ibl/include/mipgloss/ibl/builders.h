@@ -33,6 +33,8 @@
 
 namespace mipgloss {
 
+class PhongFilter;
+
 enum class Builder { Phong, Box, Paper, Reference };
 inline constexpr Builder kDefaultBuilder = Builder::Phong;
 // Every builder, the default first.
@@ -57,7 +59,8 @@ MipChain buildChain(const CubeMap& base, Builder builder, const BuildOptions& op
 // The individual builders.
 MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options = {});
 MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options = {});
-MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options = {});
+// `filter`, when given, is this base's PhongFilter (kept for lobe cubes): its pyramid is reused.
+MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options = {}, const PhongFilter* filter = nullptr);
 MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options = {});
 
 // One box step: each face of `level` resampled to `size` by area-proportional weights (2×2

@@ -1,7 +1,7 @@
 // The settled picture: once a material's λ rests, the object is drawn from a cube that holds its
 // own lobe exactly (builders.h, lobeCubeSize: σ ≈ 3.6 texels, so bilinear reads between its
 // centres stay within about 1 %), instead of the chain's blend of two levels whose lobes are 4×
-// apart (5–14 % off any single lobe, docs/chain-schedule.md). One cube per distinct lobe in use,
+// apart (10–58 % off it at half levels, measured by mipgloss bench, docs/chain-schedule.md). One cube per distinct lobe in use,
 // made only for lobes the scene shows. Pure C++: the window makes them on its worker, `render`
 // directly.
 #pragma once
