@@ -1,4 +1,5 @@
 #include "mipgloss/scene/mesh.h"
+#include "mesh_files.h"
 #include "test_support.h"
 
 // OpenMesh's writers make the files of the other formats (its include path is the system one; the
@@ -27,17 +28,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test::append;
+using test::binaryPly;
+using test::objText;
+
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 using test::TempDir;
 
 using test::readText;
 using test::writeBytes;
-
-template <typename T>
-void append(std::string& bytes, const T& value) {
-    bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
 
 fs::path teapotAsset() { return test::asset("meshes/teapot_newell_seg16.obj"); }
 fs::path resourceTeapot() { return test::assetDir().parent_path().parent_path() / "resources/meshes/teapot.obj"; }
@@ -64,36 +64,6 @@ std::string binaryStl(const Mesh& mesh, const glm::vec3& facetNormal) {
         append(bytes, std::uint16_t{0});
     }
     return bytes;
-}
-
-std::string binaryPly(const Mesh& mesh) {
-    std::string bytes = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(mesh.vertexCount()) +
-                        "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                        std::to_string(mesh.triangleCount()) +
-                        "\nproperty list uchar int vertex_indices\nend_header\n";
-    bytes.reserve(bytes.size() + 12 * mesh.vertexCount() + 13 * mesh.triangleCount());
-    for (const glm::vec3& p : mesh.positions) bytes.append(reinterpret_cast<const char*>(&p), 12);
-    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-        bytes.push_back(3);
-        for (int k = 0; k < 3; ++k) append(bytes, static_cast<std::int32_t>(mesh.indices[t + k]));
-    }
-    return bytes;
-}
-
-std::string objText(const Mesh& mesh) {
-    std::string text;
-    text.reserve(40 * mesh.vertexCount() + 24 * mesh.triangleCount());
-    char line[128];
-    for (const glm::vec3& p : mesh.positions) {
-        const int n = std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
-        text.append(line, static_cast<std::size_t>(n));
-    }
-    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-        const int n = std::snprintf(line, sizeof line, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1,
-                                    mesh.indices[t + 2] + 1);
-        text.append(line, static_cast<std::size_t>(n));
-    }
-    return text;
 }
 
 // Loading `file` must fail with a MeshError naming it and containing `reason`.
