@@ -62,7 +62,12 @@ const std::set<std::string>& imageExtensions() {
             std::size_t p = colon == std::string::npos ? 0 : colon + 1;
             while (p < entry.size()) {
                 const std::size_t comma = std::min(entry.find(',', p), entry.size());
-                if (comma > p) e.insert("." + lower(entry.substr(p, comma - p)));
+                if (comma > p) {
+                    // Appended rather than "." + ...: GCC 12's -Wrestrict misreads that at -O3.
+                    std::string ext(".");
+                    ext += lower(entry.substr(p, comma - p));
+                    e.insert(std::move(ext));
+                }
                 p = comma + 1;
             }
             pos = end + 1;
