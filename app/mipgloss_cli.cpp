@@ -44,7 +44,7 @@ usage:
   mipgloss bake [ENV] --out DIR [--builder NAME] [--size N] [--layout L]
                 [--handedness right|left] [--irradiance] [--quiet]
   mipgloss bench [--env FILE]... [--sizes 128,256,512] [--builders a,b,...]
-                 [--repeat R] [--directions D] [--no-half] [--plot FILE.svg]
+                 [--repeat R] [--directions D] [--no-half] [--shortcuts] [--plot FILE.svg]
   mipgloss --help | --version
 
 bake: builds the mip chain of an environment and writes
@@ -86,6 +86,8 @@ bench: builds the chain of each environment at each face size N with every build
   --repeat R      timed builds per builder, the median is reported (default 3)
   --directions D  random directions for the between-centres errors (default 1500)
   --no-half       skip the half-level rows (their best-fit search is the slowest part)
+  --shortcuts     also build the default chain with each of its shortcuts changed (pyramid floor
+                  64, finer source, lobe cut 1e-3, no half-size filtering): what each one costs
   --plot FILE.svg also draw error against time: x = build time, y = worst between-centres error
                   over read levels, both log scale, one labelled marker per builder, size and
                   environment; writes FILE.svg and FILE.png beside it (needs a build with Qt)
@@ -253,6 +255,7 @@ int runBench(Args args) {
     int repeat = 3;
     int directionCount = 1500;
     bool halfLevels = true;
+    bool shortcuts = false;
     fs::path plot;
     while (!args.empty()) {
         const std::string a = args.next();
@@ -270,6 +273,7 @@ int runBench(Args args) {
         } else if (a == "--repeat") repeat = parsePositive(a, args.value(a));
         else if (a == "--directions") directionCount = parsePositive(a, args.value(a));
         else if (a == "--no-half") halfLevels = false;
+        else if (a == "--shortcuts") shortcuts = true;
         else if (a == "--plot") {
             plot = args.value(a);
 #ifndef MIPGLOSS_WITH_PLOT
@@ -387,6 +391,52 @@ int runBench(Args args) {
                 std::fflush(stdout);
                 rowOf.push_back(rows.size());
                 rows.push_back(row);
+            }
+
+            if (shortcuts) {
+                // What each of the default builder's shortcuts costs: the chain built with one
+                // of them changed (PhongShortcuts), timed like the builders, errors as above.
+                struct Variant {
+                    const char* name;
+                    PhongShortcuts change;
+                };
+                std::vector<Variant> variants{{"default", {}}};
+                variants.push_back({"src>=64", {}});
+                variants.back().change.minSourceSize = 64;
+                variants.push_back({"src 0.28s", {}});
+                variants.back().change.sourceFactor = 32.0;
+                variants.push_back({"cut 1e-3", {}});
+                variants.back().change.cutoff = 1e-3;
+                variants.push_back({"no half", {}});
+                variants.back().change.upsampleFromSize = 0;
+                std::printf("shortcuts (phong with one change: src>=64 = pyramid floor 64 instead of 32; src 0.28s = "
+                            "source texels 0.28 sigma instead of 0.55; cut 1e-3 instead of 1e-4; no half = faces >= 256 "
+                            "filtered at full size)\n");
+                for (const Variant& v : variants) {
+                    std::vector<double> t;
+                    MipChain chain;
+                    for (int r = 0; r < repeat; ++r) {
+                        const auto tb = std::chrono::steady_clock::now();
+                        const PhongFilter filter(base, v.change);
+                        chain = buildPhongChain(base, {}, &filter);
+                        t.push_back(secondsSince(tb));
+                    }
+                    double worstCentre = 0.0, worstRead = 0.0;
+                    std::printf("%-9s %8.4f %7.1f |", v.name, median(t),
+                                times[Builder::Box] > 0 ? median(t) / times[Builder::Box] : 0.0);
+                    for (int k = 1; k <= last; ++k) {
+                        const double centre = compareCubes(chain.levels[static_cast<std::size_t>(k)],
+                                                           truth.levels[static_cast<std::size_t>(k)]).relRms;
+                        const double read = relativeRms(readChain(chain, k, dirs), levelTruth[static_cast<std::size_t>(k)]);
+                        worstCentre = std::max(worstCentre, centre);
+                        worstRead = std::max(worstRead, read);
+                        char cell[32];
+                        std::snprintf(cell, sizeof cell, "%.2f/%.2f", 100 * centre, 100 * read);
+                        std::printf(" %11s", cell);
+                    }
+                    std::printf(" | %.2f/%.2f\n", 100 * worstCentre, 100 * worstRead);
+                    std::fflush(stdout);
+                }
             }
 
             if (halfLevels) {

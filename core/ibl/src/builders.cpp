@@ -15,17 +15,9 @@ namespace mipgloss {
 
 namespace {
 
-// The default builder's lobe cut: (R·ω)^n below 1e-3 of the peak is left out. For the lobes the
-// schedule uses (Gaussian-like, σ ≈ 3.6 texels) the tail beyond holds about 1e-3 of the lobe's
-// energy, and the weights are normalized over what is kept, so a constant stays exact and the
-// rest moves by at most 0.1 % of the local contrast (docs/chain-schedule.md).
-constexpr double kPhongCutoff = 1e-3;
-// The pyramid's coarsest useful level, and the lobe cubes' size limits.
-constexpr int kMinSourceSize = 32;
+// The lobe cubes' size limits.
 constexpr int kMinLobeCubeSize = 16;
 constexpr int kMaxLobeCubeSize = 1024;
-// Faces from this size on are filtered at half size and interpolated (PhongFilter::filter).
-constexpr int kUpsampleFromSize = 256;
 
 // Weights of an area-proportional box from `from` texels to `to` texels along one axis:
 // destination texel d covers [d·from/to, (d+1)·from/to) of the source.
@@ -249,16 +241,18 @@ MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options) {
 
 struct PhongFilter::Impl {
     int baseSize = 0;
+    PhongShortcuts shortcuts;
     std::vector<detail::LobeSource> sources;  // the energy pyramid, finest first
 };
 
-PhongFilter::PhongFilter(const CubeMap& base) : impl_(std::make_unique<Impl>()) {
+PhongFilter::PhongFilter(const CubeMap& base, const PhongShortcuts& shortcuts) : impl_(std::make_unique<Impl>()) {
     impl_->baseSize = base.size();
+    impl_->shortcuts = shortcuts;
     impl_->sources.push_back(detail::baseSource(base));
     // The pyramid needs exact 2×2 nesting: a non-power-of-two base coarsens only while its size
     // stays even, and lobes then filter that finer (slower, as exact) source. No level below
     // kMinSourceSize is made: filter() never uses one.
-    while (impl_->sources.back().size % 2 == 0 && impl_->sources.back().size / 2 >= kMinSourceSize)
+    while (impl_->sources.back().size % 2 == 0 && impl_->sources.back().size / 2 >= shortcuts.minSourceSize)
         impl_->sources.push_back(detail::coarsenSource(impl_->sources.back()));
 }
 
@@ -270,14 +264,15 @@ CubeMap PhongFilter::filter(double exponent, int size) const {
     // The coarsest pyramid level whose texels are at most about half the lobe's σ (a face of
     // √(8n) texels: 1.57/√(8n) rad = 0.55 σ), and never below 32²: measured in
     // docs/chain-schedule.md, these sources cost under 0.3 % of the between-centres error.
-    const double wanted = std::max(static_cast<double>(kMinSourceSize), std::ceil(std::sqrt(8.0 * exponent)));
+    const PhongShortcuts& cut = impl_->shortcuts;
+    const double wanted = std::max(static_cast<double>(cut.minSourceSize), std::ceil(std::sqrt(cut.sourceFactor * exponent)));
     std::size_t j = 0;
     while (j + 1 < impl_->sources.size() && impl_->sources[j + 1].size >= wanted) ++j;
     // Large faces are filtered at half size and interpolated (σ = 3.6 texels at the level is 1.8
     // at half size, sampled far above its Nyquist rate); smaller ones directly.
-    if (size >= kUpsampleFromSize && size % 2 == 0)
-        return detail::convolveUpsampled(impl_->sources[j], exponent, size, kPhongCutoff);
-    return detail::convolve(impl_->sources[j], exponent, size, kPhongCutoff);
+    if (cut.upsampleFromSize > 0 && size >= cut.upsampleFromSize && size % 2 == 0)
+        return detail::convolveUpsampled(impl_->sources[j], exponent, size, cut.cutoff);
+    return detail::convolve(impl_->sources[j], exponent, size, cut.cutoff);
 }
 
 int lobeCubeSize(double exponent, int baseSize) {

@@ -70,7 +70,7 @@ TEST(Builders, ConstantEnvironmentStaysConstantAtEveryLevel) {
 
 namespace {
 
-// The same gains for the lobe cut where (R·ω)^n < cut (the default builder's 1e-3, weights
+// The same gains for the lobe cut where (R·ω)^n < cut (the default builder's, weights
 // normalized over the kept cap cos θ >= c = cut^(1/n)): with I(m) = ∫_c^1 t^m dt = (1 − c^(m+1))/(m+1),
 //     Λ₁ = I(n+1)/I(n),  Λ₂ = (3 I(n+2) − I(n)) / (2 I(n)),  Λ₃ = (5 I(n+3) − 3 I(n+1)) / (2 I(n)).
 struct CutGains {
@@ -83,7 +83,7 @@ CutGains cutGains(double n, double cut) {
     return {integral(n + 1.0) / i0, (3.0 * integral(n + 2.0) - i0) / (2.0 * i0),
             (5.0 * integral(n + 3.0) - 3.0 * integral(n + 1.0)) / (2.0 * i0)};
 }
-constexpr double kPhongCut = 1e-3;  // builders.cpp kPhongCutoff
+const double kPhongCut = PhongShortcuts{}.cutoff;  // the default builder's lobe cut
 
 // Largest |level - expected| of every read level k >= 1 of `chain` (base size n) for gains of
 // its scheduled exponent.
@@ -95,16 +95,16 @@ void forEachReadLevel(const MipChain& chain, Expected&& check) {
 
 }  // namespace
 
-TEST(Builders, TheLobeCutMovesTheGainsByAtMostAQuarterOf1em3) {
-    // Analytic: cutting at c^n = 1e-3 changes Λ₁ by 1e-3·c(1 − c)/(1 − 1e-3·c) <= 2.5e-4, and the
+TEST(Builders, TheLobeCutMovesTheGainsByAtMostAQuarterOfTheCut) {
+    // Analytic: cutting at c^n = cut changes Λ₁ by cut·c(1 − c)/(1 − cut·c) <= cut/4, and the
     // band-2 and -3 gains by the same order. At the schedule's exponents (1 ... 2048).
     for (double n : {1.0, 8.0, 18.0, 32.0, 72.0, 128.0, 512.0, 2048.0}) {
         const CutGains g = cutGains(n, kPhongCut);
         const double c = std::pow(kPhongCut, 1.0 / n);
-        EXPECT_NEAR(g.g1 - gain1(n), 1e-3 * gain1(n) * c * (1.0 - c) / (1.0 - 1e-3 * c), 1e-12) << n;
-        EXPECT_LE(std::fabs(g.g1 - gain1(n)), 2.5e-4) << n;
-        EXPECT_LE(std::fabs(g.g2 - gain2(n)), 1e-3) << n;
-        EXPECT_LE(std::fabs(g.g3 - gain3(n)), 1e-3) << n;
+        EXPECT_NEAR(g.g1 - gain1(n), kPhongCut * gain1(n) * c * (1.0 - c) / (1.0 - kPhongCut * c), 1e-12) << n;
+        EXPECT_LE(std::fabs(g.g1 - gain1(n)), kPhongCut / 4.0) << n;
+        EXPECT_LE(std::fabs(g.g2 - gain2(n)), kPhongCut) << n;
+        EXPECT_LE(std::fabs(g.g3 - gain3(n)), kPhongCut) << n;
         // The reference's cut (1e-10) is seven orders below: the full gains.
         const CutGains r = cutGains(n, 1e-10);
         EXPECT_NEAR(r.g1, gain1(n), 1e-10) << n;

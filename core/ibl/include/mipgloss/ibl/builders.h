@@ -71,9 +71,27 @@ CubeMap boxDownsample(const CubeMap& level, int size);
 // The default builder's machinery, kept for lobes made after the chain: the lobe cube of one
 // material (the settled picture) comes from the same energy pyramid. Built once per base
 // (about a third of the base's size in memory); filter() may run on any thread.
+// The default builder's shortcuts (docs/chain-schedule.md). The defaults are the product's;
+// `mipgloss bench --shortcuts` builds with each one changed to measure what it costs.
+struct PhongShortcuts {
+    // The source: the coarsest energy-pyramid level whose face has at least √(sourceFactor·n)
+    // texels (√8·√n: texels of 1.57/M rad ≈ 0.55σ), and never one below minSourceSize.
+    double sourceFactor = 8.0;
+    int minSourceSize = 32;
+    // The lobe cut: (R·ω)^n below this fraction of its peak is left out. For the schedule's
+    // Gaussian-like lobes the tail beyond it holds about as much of the energy; the weights are
+    // normalized over what is kept, so a constant stays exact. 1e-4 rather than 1e-3: beside a
+    // sun 10⁴× brighter than the sky the lost tail shows (sunrise at 512, level 1: read error
+    // 0.29 % at 1e-4 against 0.83 % at 1e-3, for 15 % more time; `mipgloss bench --shortcuts`).
+    double cutoff = 1e-4;
+    // Faces from this size on are filtered at half size and brought up by cubic B-spline
+    // interpolation (σ = 1.8 texels at half size is far above its Nyquist rate); 0: never.
+    int upsampleFromSize = 256;
+};
+
 class PhongFilter {
 public:
-    explicit PhongFilter(const CubeMap& base);
+    explicit PhongFilter(const CubeMap& base, const PhongShortcuts& shortcuts = {});
     ~PhongFilter();
     PhongFilter(const PhongFilter&) = delete;
     PhongFilter& operator=(const PhongFilter&) = delete;
