@@ -15,9 +15,10 @@ namespace mipgloss {
 
 namespace {
 
-// The lobe cubes' size limits.
+// The lobe cubes' size limits: at least 16, at most twice the base and 1024.
 constexpr int kMinLobeCubeSize = 16;
 constexpr int kMaxLobeCubeSize = 1024;
+int lobeCubeCap(int baseSize) { return std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize); }
 
 // Weights of an area-proportional box from `from` texels to `to` texels along one axis:
 // destination texel d covers [d·from/to, (d+1)·from/to) of the source.
@@ -276,14 +277,13 @@ CubeMap PhongFilter::filter(double exponent, int size) const {
 }
 
 int lobeCubeSize(double exponent, int baseSize) {
-    const int cap = std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize);
+    const int cap = lobeCubeCap(baseSize);
     const double wanted = std::ceil(std::sqrt(32.0 * std::max(exponent, 0.0)));
     return static_cast<int>(std::clamp(wanted, static_cast<double>(kMinLobeCubeSize), static_cast<double>(std::max(cap, kMinLobeCubeSize))));
 }
 
 bool lobeCubeHoldsLobe(double exponent, int baseSize) {
-    const int cap = std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize);
-    return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= cap;
+    return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= lobeCubeCap(baseSize);
 }
 
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options, const PhongFilter* given) {

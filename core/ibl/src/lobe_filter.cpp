@@ -70,9 +70,8 @@ void forEachNodeInCap(const NodeGrid& g, const glm::vec3& r, float cosA, float s
         s.stamp[static_cast<std::size_t>(id)] = s.current;
         s.queue.push_back(id);
     };
-    const FaceCoord start = directionToFace(r);
-    push(start.face, std::clamp(static_cast<int>(start.s * static_cast<float>(n)), 0, n - 1),
-         std::clamp(static_cast<int>(start.t * static_cast<float>(n)), 0, n - 1));
+    const TexelRef start = texelOf(directionToFace(r), n);
+    push(start.face, start.x, start.y);
     for (std::size_t head = 0; head < s.queue.size(); ++head) {
         const int id = s.queue[head];
         const Face f = static_cast<Face>(id / perFace);
