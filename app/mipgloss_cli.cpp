@@ -175,28 +175,11 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The lobe chain level k stands for, with level 0 counting as N²/32 (as chainLevelForExponent has it).
+// The lobe chain level k stands for, level 0 (the mirror) counted as N²/32: a finite end for the
+// best-fit search's range.
 double heldExponent(int baseSize, int level) {
     if (level == 0) return static_cast<double>(baseSize) * baseSize / 32.0;
     return levelExponent(baseSize, level);
-}
-
-// The exponent e with chainLevelForExponent(e, N) = lod: the lobe the renderer means when it reads
-// the chain at `lod` while λ moves. chainLevelForExponent falls as e grows; bisection on log e.
-double exponentAtChainLevel(double lod, int baseSize) {
-    double lo = 0.0, hi = std::log(heldExponent(baseSize, 0));
-    for (int i = 0; i < 100; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (chainLevelForExponent(std::exp(mid), baseSize) > lod ? lo : hi) = mid;
-    }
-    return std::exp(0.5 * (lo + hi));
-}
-
-// The chain read at `lod` at `dirs` (sampleChain, as the GPU reads it).
-std::vector<Rgb> readChain(const MipChain& chain, double lod, const std::vector<glm::vec3>& dirs) {
-    std::vector<Rgb> out(dirs.size());
-    for (std::size_t i = 0; i < dirs.size(); ++i) out[i] = sampleChain(chain, dirs[i], lod);
-    return out;
 }
 
 // The exact lobe n at `dirs` from a copy of the base reduced (area-proportional box) until its
@@ -336,7 +319,7 @@ int runBench(Args args) {
             std::vector<std::vector<Rgb>> halfTruth;
             if (halfLevels)
                 for (int k = 0; k < last; ++k) {
-                    halfExponent.push_back(exponentAtChainLevel(k + 0.5, size));
+                    halfExponent.push_back(exponentForChainLevel(k + 0.5, size));
                     halfTruth.push_back(referenceLobeAt(base, halfExponent.back(), dirs));
                 }
             const double truthTime = secondsSince(t0);

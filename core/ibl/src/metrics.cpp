@@ -103,6 +103,12 @@ Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, double lod) {
     return a + f * (b - a);
 }
 
+std::vector<Rgb> readChain(const MipChain& chain, double lod, const std::vector<glm::vec3>& directions) {
+    std::vector<Rgb> out(directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) out[i] = sampleChain(chain, directions[i], lod);
+    return out;
+}
+
 double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth) {
     double se = 0.0, sr = 0.0;
     for (std::size_t i = 0; i < std::min(test.size(), truth.size()); ++i) {
@@ -115,10 +121,7 @@ double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth) 
 
 double readError(const MipChain& chain, double lod, const CubeMap& base, double exponent,
                  const std::vector<glm::vec3>& directions) {
-    const std::vector<Rgb> truth = referenceLobeAt(base, exponent, directions);
-    std::vector<Rgb> read(directions.size());
-    for (std::size_t i = 0; i < directions.size(); ++i) read[i] = sampleChain(chain, directions[i], lod);
-    return relativeRms(read, truth);
+    return relativeRms(readChain(chain, lod, directions), referenceLobeAt(base, exponent, directions));
 }
 
 }  // namespace mipgloss

@@ -56,17 +56,32 @@ double levelExponent(int baseSize, int level) {
     return m * m / 32.0;
 }
 
+namespace {
+// The lobe's mean cosine, its band-1 factor: the quantity a two-level blend matches (phong.h).
+double meanCosine(double n) { return std::isinf(n) ? 1.0 : (n + 1.0) / (n + 2.0); }
+}  // namespace
+
 double chainLevelForExponent(double exponent, int baseSize) {
     const int last = lastReadLevel(baseSize);
     if (last == 0 || std::isnan(exponent) || exponent >= kMirrorExponent) return 0.0;
     if (exponent <= 1.0) return static_cast<double>(last);
-    auto meanCosine = [](double n) { return std::isinf(n) ? 1.0 : (n + 1.0) / (n + 2.0); };
     const double target = meanCosine(exponent);
     for (int k = 0; k < last; ++k) {
         const double hi = meanCosine(levelExponent(baseSize, k)), lo = meanCosine(levelExponent(baseSize, k + 1));
         if (target >= lo) return k + (hi - target) / (hi - lo);
     }
     return static_cast<double>(last);
+}
+
+double exponentForChainLevel(double lod, int baseSize) {
+    const int last = lastReadLevel(baseSize);
+    if (std::isnan(lod)) return lod;
+    if (lod <= 0.0 || last == 0) return kMirrorExponent;
+    if (lod >= last) return 1.0;
+    const int k = static_cast<int>(std::floor(lod));
+    const double hi = meanCosine(levelExponent(baseSize, k)), lo = meanCosine(levelExponent(baseSize, k + 1));
+    const double target = hi - (lod - k) * (hi - lo);
+    return (2.0 * target - 1.0) / (1.0 - target);
 }
 
 }  // namespace mipgloss

@@ -89,7 +89,7 @@ TEST(BetweenCentres, TheSunReadsWithin2PercentWhereItIs) {
         if (n < 32.0) continue;
         const auto dirs = directionsAround(kSun, 1.0 / std::sqrt(n), 400);
         const std::vector<Rgb> truth = referenceLobeAt(base, n, dirs);
-        const double err = relativeRms(test::readAt(phong, k, dirs), truth);
+        const double err = relativeRms(readChain(phong, k, dirs), truth);
         EXPECT_LE(err, 0.02) << "level " << k;
     }
 }
@@ -101,7 +101,7 @@ TEST(BetweenCentres, ReadErrorIsTheSameMeasure) {
     const MipChain phong = buildPhongChain(base);
     const auto dirs = uniformDirections(400);
     const double n = levelExponent(64, 1);
-    EXPECT_DOUBLE_EQ(readError(phong, 1.0, base, n, dirs), relativeRms(test::readAt(phong, 1.0, dirs), referenceLobeAt(base, n, dirs)));
+    EXPECT_DOUBLE_EQ(readError(phong, 1.0, base, n, dirs), relativeRms(readChain(phong, 1.0, dirs), referenceLobeAt(base, n, dirs)));
 }
 
 TEST(BetweenCentres, TexelCentresAreExactToWellUnder1Percent) {

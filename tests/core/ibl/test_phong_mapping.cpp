@@ -282,3 +282,18 @@ TEST(BuilderNames, EveryBuilderRoundTripsAndUnknownNamesAreRefused) {
     EXPECT_FALSE(parseBuilder("", untouched));
     EXPECT_EQ(untouched, Builder::Paper) << "a refused name leaves the value alone";
 }
+
+TEST(ChainLevel, ExponentForChainLevelInvertsChainLevelForExponent) {
+    for (const int n : {16, 96, 128, 200, 512}) {
+        const int last = lastReadLevel(n);
+        EXPECT_EQ(exponentForChainLevel(0.0, n), kMirrorExponent) << n;
+        EXPECT_EQ(exponentForChainLevel(static_cast<double>(last), n), 1.0) << n;
+        for (int k = 1; k <= last; ++k)
+            EXPECT_NEAR(exponentForChainLevel(k, n), levelExponent(n, k), 1e-9 * levelExponent(n, k)) << n << " " << k;
+        for (double lod = 0.05; lod < last; lod += 0.1) {
+            const double e = exponentForChainLevel(lod, n);
+            EXPECT_NEAR(chainLevelForExponent(e, n), lod, 1e-9) << n << " lod " << lod;
+        }
+    }
+    EXPECT_TRUE(std::isnan(exponentForChainLevel(std::numeric_limits<double>::quiet_NaN(), 128)));
+}

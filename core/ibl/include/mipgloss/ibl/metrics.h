@@ -52,6 +52,9 @@ std::vector<glm::vec3> uniformDirections(int count, unsigned seed = 1);
 // floor(lod) and the next level (lod clamped to the chain).
 Rgb sampleChain(const MipChain& chain, const glm::vec3& direction, double lod);
 
+// sampleChain at every direction.
+std::vector<Rgb> readChain(const MipChain& chain, double lod, const std::vector<glm::vec3>& directions);
+
 // Relative RMS over RGB: sqrt(Σ|a−b|²) / sqrt(Σ|b|²) (directions drawn uniformly carry equal
 // weight). `test` and `truth` have the same length.
 double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth);

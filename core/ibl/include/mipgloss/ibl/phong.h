@@ -51,5 +51,8 @@ int lastReadLevel(int baseSize);
 // so the blend is as wide as the lobe on average (not the same shape: 10–58 % off it at half levels,
 // mipgloss bench; the lobe cube of the settled picture removes that). 0 for the mirror, lastReadLevel for n <= 1.
 double chainLevelForExponent(double exponent, int baseSize);
+// Its inverse: the lobe the renderer means when it reads the chain at `lod` (∞ at 0, 1 at
+// lastReadLevel and beyond). Λ(n) = (n+1)/(n+2) is inverted as n = (2Λ − 1)/(1 − Λ).
+double exponentForChainLevel(double lod, int baseSize);
 
 }  // namespace mipgloss
