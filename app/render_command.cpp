@@ -246,9 +246,7 @@ int runRender(Args args, const char* argv0) {
         camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
     }
     // The settled picture: each lobe in use from its own cube.
-    std::vector<std::shared_ptr<const LobeCube>> lobes;
-    if (environment->filter)
-        for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+    const std::vector<std::shared_ptr<const LobeCube>> lobes = makeLobeCubes(*environment, scene);
     renderer.setLobes(lobes);
     const QImage image = renderer.render(scene, camera, environment, width, height);
     if (image.isNull()) throw std::runtime_error(outPath->string() + ": the render failed");

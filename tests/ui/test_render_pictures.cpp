@@ -271,10 +271,7 @@ SeamMeasure seamsOfDiffuseSphere(Builder builder, float lambda, QImage* picture,
     const auto env = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
     const int w = 384, h = 384;
-    std::vector<std::shared_ptr<const LobeCube>> lobes;
-    if (settled)
-        for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(*env, key)));
-    renderer->setLobes(lobes);
+    renderer->setLobes(settled ? makeLobeCubes(*env, scene) : std::vector<std::shared_ptr<const LobeCube>>{});
     OrbitCamera camera;
     camera.yawDegrees = 35.0f;  // three faces and their shared edges in view
     camera.pitchDegrees = 30.0f;

@@ -51,9 +51,7 @@ struct SettledRender {
 // Renders the scene settled: its lobe cubes made first, as `mipgloss render` does.
 SettledRender renderSettled(ui::OffscreenRenderer& renderer, const Scene& scene,
                             const std::shared_ptr<const PreparedEnvironment>& env, int size) {
-    std::vector<std::shared_ptr<const LobeCube>> lobes;
-    for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(*env, key)));
-    renderer.setLobes(lobes);
+    renderer.setLobes(makeLobeCubes(*env, scene));
     OrbitCamera camera;
     camera.yawDegrees = 30.0f;
     camera.pitchDegrees = 20.0f;

@@ -41,4 +41,11 @@ LobeCube makeLobeCube(const PreparedEnvironment& environment, int key) {
     return lobe;
 }
 
+std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene) {
+    std::vector<std::shared_ptr<const LobeCube>> lobes;
+    if (!environment.filter) return lobes;
+    for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, key)));
+    return lobes;
+}
+
 }  // namespace mipgloss

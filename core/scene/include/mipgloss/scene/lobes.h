@@ -35,4 +35,9 @@ std::vector<int> lobesInUse(const Scene& scene);
 // have been prepared with the default builder (filter set). Throws Cancelled if asked.
 LobeCube makeLobeCube(const PreparedEnvironment& environment, int key);
 
+// Every lobe cube the scene shows (lobesInUse), made now: the settled picture in one call, for
+// `mipgloss render` and the tests (the window makes them one by one on its worker). Empty when
+// the environment has no filter.
+std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene);
+
 }  // namespace mipgloss
