@@ -59,11 +59,9 @@ void EnvironmentManager::scheduleLobes() {
 void EnvironmentManager::startLobeJob() {
     lobesWanted_ = false;
     if (!document_ || !current_ || !current_->filter) return;
-    if (lobesFilter_ != current_->filter) {
-        lobes_.clear();
-        lobesFilter_ = current_->filter;
-        emit lobesReady();
-    }
+    // Lobes of an environment that is no longer current go.
+    const auto stale = std::erase_if(lobes_, [&](const auto& entry) { return entry.second->filter != current_->filter; });
+    if (stale > 0) emit lobesReady();
     const std::vector<int> inUse = lobesInUse(document_->scene());
     std::vector<int> missing;
     for (int key : inUse)

@@ -38,8 +38,8 @@ glm::mat3 environmentRotation(float degrees) {
     return glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(-degrees), glm::vec3(0, 1, 0)));
 }
 
-// λ as a sampler key: materials within 1/1024 of a level share a sampler.
-int lambdaKey(float lambda) { return static_cast<int>(std::lround(lambda * 1024.0f)); }
+// A chain level (GL_TEXTURE_MIN_LOD) as a sampler key: levels within 1/1024 share a sampler.
+int levelKey(float level) { return static_cast<int>(std::lround(level * 1024.0f)); }
 
 }  // namespace
 
@@ -76,8 +76,9 @@ struct Renderer::Impl {
 
     RenderCounters counters;
 
-    GLuint sampler(float lambda) {
-        const int key = lambdaKey(lambda);
+    // The sampler reading the chain from `level` on (GL_TEXTURE_MIN_LOD = level).
+    GLuint sampler(float level) {
+        const int key = levelKey(level);
         auto it = samplers.find(key);
         if (it != samplers.end()) return it->second;
         GLuint s = 0;
@@ -100,6 +101,14 @@ struct Renderer::Impl {
         const auto it = lobes.find(lobeKey(lambda));
         if (it == lobes.end() || it->second.source->filter != environment->filter) return nullptr;
         return &it->second;
+    }
+
+    // Binds a lobe cube to unit 2 (uLobe) with its trilinear sampler; unit 0 stays active.
+    void bindLobe(const GpuLobe& lobe) {
+        gl->glActiveTexture(GL_TEXTURE2);
+        gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe.texture);
+        gl->glBindSampler(2, lobeSampler);
+        gl->glActiveTexture(GL_TEXTURE0);
     }
 
     // Chain level (MIN_LOD) standing in for λ's lobe while it moves.
@@ -159,12 +168,7 @@ struct Renderer::Impl {
             gl->glUniform1i(locUseLobe, lobe ? 1 : 0);
             gl->glUniform1i(locLobeExact, lobe && lobe->source->holdsLobe ? 1 : 0);
             gl->glUniform1f(locExponent, static_cast<float>(lambdaToExponent(lambda)));
-            if (lobe) {
-                gl->glActiveTexture(GL_TEXTURE2);
-                gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe->texture);
-                gl->glBindSampler(2, lobeSampler);
-                gl->glActiveTexture(GL_TEXTURE0);
-            }
+            if (lobe) bindLobe(*lobe);
             // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
             // level standing in for the material's lobe; a mirror reads the mirror texture.
             const bool mirror = lambda <= 0.0f && lookup != 2;
@@ -493,12 +497,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
             const Impl::GpuLobe* lobe = backgroundLambda > 0.0f ? d.lobeFor(backgroundLambda) : nullptr;
             gl->glUniform1f(bg.uniformLocation("uLod"), d.chainLevel(backgroundLambda));
             gl->glUniform1i(bg.uniformLocation("uUseLobe"), lobe ? 1 : 0);
-            if (lobe) {
-                gl->glActiveTexture(GL_TEXTURE2);
-                gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe->texture);
-                gl->glBindSampler(2, d.lobeSampler);
-                gl->glActiveTexture(GL_TEXTURE0);
-            }
+            if (lobe) d.bindLobe(*lobe);
             gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
             gl->glBindSampler(0, d.sampler(0.0f));
             gl->glDepthFunc(GL_LEQUAL);

@@ -91,9 +91,8 @@ private:
     // Last request that failed, so the same bad file is not retried on every scene change.
     EnvironmentSettings failedSettings_;
     bool haveFailed_ = false;
-    // Lobe cubes of current_ by key; a new environment (a new filter) empties it.
+    // Lobe cubes of current_ by key (each knows its environment's filter; others are dropped).
     std::map<int, std::shared_ptr<const LobeCube>> lobes_;
-    std::shared_ptr<const PhongFilter> lobesFilter_;
     bool lobeBusy_ = false;
     bool lobesWanted_ = false;
     std::shared_ptr<std::atomic<bool>> cancelLobes_;
