@@ -243,7 +243,7 @@ public:
         if (!(std::isfinite(stored) && stored >= 0.0 && stored <= top))
             fail("\"" + name + "\" is " + show(stored) + ": " + range);
         if (!legacyLambda_) return stored;
-        if (stored == 0.0) return 0.0;  // the mirror under any face size
+        // λ 0 is the mirror under any face size: legacy n = ∞, and λ(∞) = 0.
         return exponentToLambda(legacyLambdaToExponent(stored, legacyFaceSize_));
     }
 

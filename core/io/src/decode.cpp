@@ -33,8 +33,7 @@ const std::vector<float>& srgbTable(int bits) {
 }
 
 
-}  // namespace
-
+// Reads the first subimage of an opened input; `name` is what error messages call it.
 Image readOpened(OIIO::ImageInput& in, const fs::path& name) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
@@ -94,6 +93,23 @@ const OIIO::ImageSpec& readConfig() {
     return config;
 }
 
+// The end every read shares: the input as opened (null: OpenImageIO refused it), decoded,
+// sanitised, counted and recorded in the report.
+Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, ImportReport& report) {
+    if (!in) {
+        std::string err = OIIO::geterror();
+        if (err.empty()) err = "unknown error";
+        throw EnvError(name, "not a readable image: " + err);
+    }
+    Image img = readOpened(*in, name);
+    in->close();
+    addCounts(report, name, sanitise(img.px));
+    report.files.push_back(name);
+    return img;
+}
+
+}  // namespace
+
 SanitiseCounts sanitise(std::span<Rgb> px) {
     SanitiseCounts n;
     float maxFinite = 0.0f;
@@ -137,17 +153,7 @@ Image readImageFile(const fs::path& file, ImportReport& report) {
     const auto bytes = fs::file_size(file, ec);
     if (ec) throw EnvError(file, "cannot read the file: " + ec.message());
     if (bytes == 0) throw EnvError(file, "file is empty (0 bytes)");
-    auto in = OIIO::ImageInput::open(file.string(), &readConfig());
-    if (!in) {
-        std::string err = OIIO::geterror();
-        if (err.empty()) err = "unknown error";
-        throw EnvError(file, "not a readable image: " + err);
-    }
-    Image img = readOpened(*in, file);
-    in->close();
-    addCounts(report, file, sanitise(img.px));
-    report.files.push_back(file);
-    return img;
+    return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report);
 }
 
 Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report) {
@@ -157,17 +163,7 @@ Image readImageMemory(std::span<const unsigned char> bytes, const std::string& n
     OIIO::ImageSpec config = readConfig();
     void* proxy = &reader;
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    auto in = OIIO::ImageInput::open(name, &config, &reader);
-    if (!in) {
-        std::string err = OIIO::geterror();
-        if (err.empty()) err = "unknown error";
-        throw EnvError(name, "not a readable image: " + err);
-    }
-    Image img = readOpened(*in, name);
-    in->close();
-    addCounts(report, name, sanitise(img.px));
-    report.files.push_back(name);
-    return img;
+    return readInput(OIIO::ImageInput::open(name, &config, &reader), name, report);
 }
 
 }  // namespace mipgloss::io_detail

@@ -41,12 +41,6 @@ SanitiseCounts sanitise(std::span<Rgb> px);
 // Adds the counts to the report with one warning naming the file (nothing when all are zero).
 void addCounts(ImportReport& report, const std::filesystem::path& file, const SanitiseCounts& n);
 
-// The OpenImageIO read configuration: alpha unassociated, so colour is never multiplied by it.
-const OIIO::ImageSpec& readConfig();
-
-// Reads the first subimage of an opened input; `name` is what error messages call it.
-Image readOpened(OIIO::ImageInput& in, const std::filesystem::path& name);
-
 // Decodes and sanitises an image file, recording it in the report. Throws EnvError.
 Image readImageFile(const std::filesystem::path& file, ImportReport& report);
 
