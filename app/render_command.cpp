@@ -213,15 +213,15 @@ int runRender(Args args, const char* argv0) {
             object.transform.translation = glm::vec3(cursor + r, 0.0f, 0.0f) - mesh->bounds.centre();
             cursor += 2.2f * r;
             object.mesh = std::move(mesh);
-            scene.objects.push_back(std::move(object));
+            scene.addObject(std::move(object), Material{});
         }
     }
     if (envPath) scene.environment.source = envPath->string();
     if (envSize) scene.environment.faceSize = *envSize;
     if (builder) scene.environment.builder = *builder;
-    for (SceneObject& o : scene.objects) {
-        if (lambda) o.material.lambda = *lambda;
-        if (mode) o.material.mode = *mode;
+    for (NamedMaterial& m : scene.materials) {
+        if (lambda) m.material.lambda = *lambda;
+        if (mode) m.material.mode = *mode;
     }
     if (exposure) scene.display.exposureEv = *exposure;
     if (toneMap) scene.display.toneMap = *toneMap;
@@ -309,8 +309,9 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     SceneObject object;
     object.name = mesh->name;
     object.mesh = mesh;
-    object.material.lambda = 3.0f;
-    scene.objects.push_back(object);
+    Material material;
+    material.lambda = 3.0f;
+    scene.addObject(object, material);
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
     OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
@@ -375,7 +376,7 @@ int runRenderBench(Args args, const char* argv0) {
         o.mesh = teapot;
         o.transform.translation = glm::vec3(static_cast<float>(i % columns) * spacing,
                                             static_cast<float>(i / columns) * spacing, 0.0f);
-        scene.objects.push_back(std::move(o));
+        scene.addObject(std::move(o), Material{});
     }
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, ChainNeeds{7, false}));
@@ -401,7 +402,7 @@ int runRenderBench(Args args, const char* argv0) {
     //   spread   λ from 0 to 7: also what the texture cache sees changes
     auto setLambdas = [&](auto lambdaOf) {
         for (int i = 0; i < objects; ++i)
-            scene.objects[static_cast<std::size_t>(i)].material.lambda = lambdaOf(i);
+            scene.materialOf(scene.objects[static_cast<std::size_t>(i)]).lambda = lambdaOf(i);
     };
     std::vector<double> shared, distinct, spread;
     for (int round = 0; round < 3; ++round) {

@@ -62,8 +62,7 @@ inline Scene sphereScene(const Material& material) {
     SceneObject object;
     object.name = "sphere";
     object.mesh = sphere;
-    object.material = material;
-    scene.objects.push_back(object);
+    scene.addObject(object, material);
     scene.display.showBackground = false;
     scene.display.samples = 0;
     return scene;

@@ -34,8 +34,9 @@ Scene twoSpheres() {
         o.mesh = mesh;
         o.meshSource = "builtin:sphere";
         o.transform.translation.x = x;
-        o.material.lambda = 2.0f;
-        s.objects.push_back(o);
+        Material m;
+        m.lambda = 2.0f;
+        s.addObject(o, m);
     }
     s.environment.faceSize = 128;
     return s;
@@ -102,26 +103,26 @@ TEST(MaterialPanel, LambdaSpinSliderAndExponentStayInStep) {
     EXPECT_DOUBLE_EQ(spin->maximum(), kMaxLambda);
 
     typeInto(spin, QStringLiteral("3.5"));
-    EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 3.5f);
+    EXPECT_FLOAT_EQ(doc.materialOf(0).lambda, 3.5f);
     EXPECT_EQ(slider->value(), 70);
     // n(3.5) = 3·128²·4^−3.5 − 1 = 383.
     EXPECT_NEAR(exponent->value(), 3.0 * 128 * 128 * std::pow(4.0, -3.5) - 1.0, 0.006);
     EXPECT_NEAR(exponent->value(), 383.0, 0.006);
-    EXPECT_FLOAT_EQ(doc.object(1).material.lambda, 2.0f) << "only the selected object changes";
+    EXPECT_FLOAT_EQ(doc.materialOf(1).lambda, 2.0f) << "only the selected object changes";
 
     slider->setValue(30);  // what a drag does
-    EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 1.5f);
+    EXPECT_FLOAT_EQ(doc.materialOf(0).lambda, 1.5f);
     EXPECT_DOUBLE_EQ(spin->value(), 1.5);
 
     // The top of the range, beyond n = 0: λ 8 is allowed and shows n = 0.
     slider->setValue(slider->maximum());
-    EXPECT_FLOAT_EQ(doc.object(0).material.lambda, 8.0f);
+    EXPECT_FLOAT_EQ(doc.materialOf(0).lambda, 8.0f);
     EXPECT_EQ(exponent->value(), 0.0);
 
     // Out of range input cannot get through: the spin box stops at kMaxLambda.
     typeInto(spin, QStringLiteral("99"));
-    EXPECT_LE(doc.object(0).material.lambda, 8.0f);
-    EXPECT_TRUE(isValidLambda(doc.object(0).material.lambda));
+    EXPECT_LE(doc.materialOf(0).lambda, 8.0f);
+    EXPECT_TRUE(isValidLambda(doc.materialOf(0).lambda));
 }
 
 TEST(MaterialPanel, TypingAnExponentSetsLambda) {
@@ -135,7 +136,7 @@ TEST(MaterialPanel, TypingAnExponentSetsLambda) {
 
     typeInto(exponent, QStringLiteral("100"));
     const double expected = exponentToLambda(100.0);
-    EXPECT_NEAR(doc.object(1).material.lambda, expected, 1e-5);
+    EXPECT_NEAR(doc.materialOf(1).lambda, expected, 1e-5);
     EXPECT_NEAR(spin->value(), expected, 0.005);
     // The document's λ gives back the typed exponent (not one rounded through the λ box).
     EXPECT_NEAR(exponent->value(), 100.0, 0.01);
@@ -146,28 +147,28 @@ TEST(MaterialPanel, TypingAnExponentSetsLambda) {
     // λ = 0 is the mirror, n = ∞, shown as "mirror"; the box's top (3·128² − 1, the limit as
     // λ → 0) means it too, and "mirror" and "inf" can be typed.
     typeInto(exponent, QStringLiteral("49151"));
-    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(1).lambda, 0.0f);
     EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
     typeInto(spin, QStringLiteral("2"));
     EXPECT_NE(exponent->text(), QStringLiteral("mirror"));
     typeInto(exponent, QStringLiteral("mirror"));
-    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(1).lambda, 0.0f);
     EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
     typeInto(spin, QStringLiteral("2"));
     typeInto(exponent, QStringLiteral("inf"));  // QTest types Latin-1 only, so not "∞"
-    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(1).lambda, 0.0f);
     typeInto(spin, QStringLiteral("0"));
     EXPECT_EQ(exponent->text(), QStringLiteral("mirror"));
 
     // The sharpest λ > 0 is not shown as a mirror.
-    Material sharp = doc.object(1).material;
+    Material sharp = doc.materialOf(1);
     sharp.lambda = 1e-6f;
     doc.setMaterial(1, sharp);
     EXPECT_NE(exponent->text(), QStringLiteral("mirror"));
 
     // n = 0 (a uniform hemisphere) is λ(0) = log2(128·√3) ≈ 7.79, inside the range.
     typeInto(exponent, QStringLiteral("0"));
-    EXPECT_NEAR(doc.object(1).material.lambda, std::log2(128.0 * std::sqrt(3.0)), 1e-5);
+    EXPECT_NEAR(doc.materialOf(1).lambda, std::log2(128.0 * std::sqrt(3.0)), 1e-5);
     EXPECT_EQ(exponent->value(), 0.0);
 }
 
@@ -187,16 +188,16 @@ TEST(MaterialPanel, ExponentIsIndependentOfTheFaceSize) {
     // λ(1024) = log2(128·√3) − ½·log2(1025).
     const double expected = std::log2(128.0 * std::sqrt(3.0)) - 0.5 * std::log2(1025.0);
     EXPECT_NEAR(exponentToLambda(1024.0), expected, 1e-12);
-    EXPECT_NEAR(doc.object(0).material.lambda, expected, 1e-6);
+    EXPECT_NEAR(doc.materialOf(0).lambda, expected, 1e-6);
     EXPECT_NEAR(exponent->value(), 1024.0, 0.005);
-    const float lambda = doc.object(0).material.lambda;
+    const float lambda = doc.materialOf(0).lambda;
     const QString shownText = exponent->text();
 
     for (int faceSize : {512, 128, 64, 512}) {
         EnvironmentSettings e = doc.scene().environment;
         e.faceSize = faceSize;
         doc.setEnvironment(e);
-        EXPECT_EQ(doc.object(0).material.lambda, lambda) << faceSize;
+        EXPECT_EQ(doc.materialOf(0).lambda, lambda) << faceSize;
         EXPECT_EQ(exponent->text(), shownText) << faceSize;
         EXPECT_NEAR(exponent->value(), 1024.0, 0.005) << faceSize;
         EXPECT_EQ(slider->maximum(), 8 * MaterialPanel::kSliderStepsPerLambda) << faceSize;
@@ -205,7 +206,7 @@ TEST(MaterialPanel, ExponentIsIndependentOfTheFaceSize) {
     // Typing it again under 512² gives the same λ.
     typeInto(spin, QStringLiteral("1"));
     typeInto(exponent, QStringLiteral("1024"));
-    EXPECT_EQ(doc.object(0).material.lambda, lambda);
+    EXPECT_EQ(doc.materialOf(0).lambda, lambda);
 }
 
 TEST(MaterialPanel, IrradianceOnlyInNormalMode) {
@@ -219,12 +220,12 @@ TEST(MaterialPanel, IrradianceOnlyInNormalMode) {
     ASSERT_TRUE(mode && irradiance && grazing);
     EXPECT_FALSE(irradiance->isEnabled());
     mode->setCurrentIndex(mode->findData(static_cast<int>(LookupMode::Normal)));
-    EXPECT_EQ(doc.object(0).material.mode, LookupMode::Normal);
+    EXPECT_EQ(doc.materialOf(0).mode, LookupMode::Normal);
     EXPECT_TRUE(irradiance->isEnabled());
     clickIndicator(irradiance);
-    EXPECT_TRUE(doc.object(0).material.useIrradiance);
+    EXPECT_TRUE(doc.materialOf(0).useIrradiance);
     clickIndicator(grazing);
-    EXPECT_TRUE(doc.object(0).material.sharperAtGrazing);
+    EXPECT_TRUE(doc.materialOf(0).sharperAtGrazing);
     doc.setSelected(1);
     EXPECT_FALSE(irradiance->isChecked());
     EXPECT_FALSE(irradiance->isEnabled());

@@ -64,7 +64,8 @@ std::string joined(const std::vector<std::string>& lines) {
 
 Scene threeSpheres() {
     Scene s;
-    s.objects = {sphereObject("a", 0.0f), sphereObject("b", 3.0f), sphereObject("c", 6.0f)};
+    for (const SceneObject& o : {sphereObject("a", 0.0f), sphereObject("b", 3.0f), sphereObject("c", 6.0f)})
+        s.addObject(o, Material{});
     return s;
 }
 
@@ -82,7 +83,7 @@ TEST(SceneDocument, SettersEmitOnlyOnChange) {
     QSignalSpy changed(&doc, &SceneDocument::changed);
 
     // The same values again: nothing.
-    doc.setMaterial(1, doc.object(1).material);
+    doc.setMaterial(1, doc.materialOf(1));
     doc.setTransform(1, doc.object(1).transform);
     doc.setVisible(1, true);
     doc.setName(1, QStringLiteral("b"));
@@ -93,7 +94,7 @@ TEST(SceneDocument, SettersEmitOnlyOnChange) {
                   display.count() + selection.count() + changed.count(),
               0);
 
-    Material m = doc.object(1).material;
+    Material m = doc.materialOf(1);
     m.lambda = 2.5f;
     doc.setMaterial(1, m);
     ASSERT_EQ(material.count(), 1);
@@ -140,22 +141,22 @@ TEST(SceneDocument, InvalidLambdaIsRefused) {
                       std::numeric_limits<float>::infinity()}) {
         m.lambda = bad;
         doc.setMaterial(0, m);
-        EXPECT_EQ(doc.object(0).material.lambda, 2.0f) << bad;
+        EXPECT_EQ(doc.materialOf(0).lambda, 2.0f) << bad;
     }
     EXPECT_EQ(material.count(), 1);
     // The ends of [0, kMaxLambda] are fine.
     m.lambda = static_cast<float>(kMaxLambda);
     doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.lambda, 8.0f);
+    EXPECT_EQ(doc.materialOf(0).lambda, 8.0f);
     m.lambda = 0.0f;
     doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(0).lambda, 0.0f);
     // The edit's other fields still apply alongside a refused λ.
     m.lambda = -1.0f;
     m.mode = LookupMode::Normal;
     doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.mode, LookupMode::Normal);
-    EXPECT_EQ(doc.object(0).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(0).mode, LookupMode::Normal);
+    EXPECT_EQ(doc.materialOf(0).lambda, 0.0f);
 
     // The background's λ likewise.
     DisplaySettings d = doc.scene().display;
@@ -173,18 +174,19 @@ TEST(SceneDocument, InvalidLambdaIsRefused) {
     // Objects and scenes arriving whole have no last good value: clamped to [0, kMaxLambda], NaN
     // to the mirror.
     Scene scene = threeSpheres();
-    scene.objects[0].material.lambda = 16.0f;
-    scene.objects[1].material.lambda = std::numeric_limits<float>::quiet_NaN();
-    scene.objects[2].material.lambda = -1.0f;
+    scene.materialOf(scene.objects[0]).lambda = 16.0f;
+    scene.materialOf(scene.objects[1]).lambda = std::numeric_limits<float>::quiet_NaN();
+    scene.materialOf(scene.objects[2]).lambda = -1.0f;
     scene.display.backgroundLambda = 12.0f;
     doc.resetScene(scene);
-    EXPECT_EQ(doc.object(0).material.lambda, 8.0f);
-    EXPECT_EQ(doc.object(1).material.lambda, 0.0f);
-    EXPECT_EQ(doc.object(2).material.lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(0).lambda, 8.0f);
+    EXPECT_EQ(doc.materialOf(1).lambda, 0.0f);
+    EXPECT_EQ(doc.materialOf(2).lambda, 0.0f);
     EXPECT_EQ(doc.scene().display.backgroundLambda, 8.0f);
     SceneObject extra = doc.object(0);
-    extra.material.lambda = 100.0f;
-    EXPECT_EQ(doc.object(doc.addObject(extra)).material.lambda, 8.0f);
+    Material absurd;
+    absurd.lambda = 100.0f;
+    EXPECT_EQ(doc.materialOf(doc.addObject(extra, absurd)).lambda, 8.0f);
 }
 
 TEST(SceneDocument, MaterialIsSanitised) {
@@ -193,7 +195,7 @@ TEST(SceneDocument, MaterialIsSanitised) {
     Material m;
     m.tint = Rgb(-1.0f, std::numeric_limits<float>::quiet_NaN(), 0.5f);
     doc.setMaterial(0, m);
-    EXPECT_EQ(doc.object(0).material.tint, Rgb(0.0f, 1.0f, 0.5f));
+    EXPECT_EQ(doc.materialOf(0).tint, Rgb(0.0f, 1.0f, 0.5f));
     // A non-finite transform is refused; the object keeps its placement.
     Transform t;
     t.translation.x = std::numeric_limits<float>::infinity();

@@ -34,13 +34,25 @@ void writeText(const fs::path& file, const std::string& text) {
     out.write(text.data(), static_cast<qint64>(text.size()));
 }
 
-// A minimal valid scene with one object using `mesh`, and `materialJson` as its material.
+// A minimal valid scene with one object using `mesh`, and `materialJson` as its material: from
+// version 3 on, the one entry of "materials" (named "thing"), before that inside the object.
 std::string oneObjectScene(const std::string& mesh, const std::string& materialJson = "{}",
                            int version = kSceneVersion) {
-    return R"({"format": "mipgloss-scene", "version": )" + std::to_string(version) + R"(,
-               "environment": {"source": "builtin:courtyard"},
-               "objects": [{"name": "thing", "mesh": ")" +
-           mesh + R"(", "material": )" + materialJson + "}]}";
+    const std::string head = R"({"format": "mipgloss-scene", "version": )" + std::to_string(version) +
+                             R"(, "environment": {"source": "builtin:courtyard"},)";
+    if (version >= kSceneVersionNamedMaterials) {
+        const std::string fields = materialJson.substr(1, materialJson.size() - 2);  // without { }
+        return head + R"( "materials": [{"name": "thing")" + (fields.find(':') != std::string::npos ? ", " : "") +
+               fields + R"(}], "objects": [{"name": "thing", "mesh": ")" + mesh +
+               R"(", "material": "thing"}]})";
+    }
+    return head + R"( "objects": [{"name": "thing", "mesh": ")" + mesh + R"(", "material": )" +
+           materialJson + "}]}";
+}
+
+// Where the one material of oneObjectScene is, as error messages name it.
+std::string materialKey(const std::string& field, int version = kSceneVersion) {
+    return (version >= kSceneVersionNamedMaterials ? "materials[0]." : "objects[0].material.") + field;
 }
 
 // Loads `json` written to DIR/name and returns the error message (empty if it loaded).
@@ -66,13 +78,15 @@ Scene figure1WithBunny() {
     bunny.transform.translation = {4.5f, -0.25f, 1.0f};
     bunny.transform.rotationDegrees = {10.0f, -35.5f, 90.0f};
     bunny.transform.scale = 7.25f;
-    bunny.material.lambda = 4.375f;
-    bunny.material.mode = LookupMode::Normal;
-    bunny.material.useIrradiance = true;
-    bunny.material.sharperAtGrazing = true;
-    bunny.material.tint = {0.9f, 0.5f, 0.125f};
+    Material fur;
+    fur.lambda = 4.375f;
+    fur.mode = LookupMode::Normal;
+    fur.useIrradiance = true;
+    fur.sharperAtGrazing = true;
+    fur.tint = {0.9f, 0.5f, 0.125f};
     bunny.visible = false;
-    scene.objects.push_back(bunny);
+    scene.addObject(bunny, fur);
+    scene.findMaterial(scene.objects.back().material)->libraryEntry = "Velvet";
     scene.environment.builder = Builder::Box;
     scene.environment.faceSize = 64;
     scene.environment.rotationDegrees = 30.0f;
@@ -106,7 +120,8 @@ TEST(SceneFile, RoundTripsFigure1AndAnImportedMesh) {
         const SceneObject& b = loaded.objects[i];
         EXPECT_EQ(b.name, a.name) << "object " << i;
         EXPECT_EQ(b.transform, a.transform) << "object " << i;
-        EXPECT_EQ(b.material, a.material) << "object " << i;
+        EXPECT_EQ(loaded.materialOf(b), scene.materialOf(a)) << "object " << i;
+        EXPECT_EQ(*loaded.findMaterial(b.material), *scene.findMaterial(a.material)) << "object " << i;
         EXPECT_EQ(b.visible, a.visible) << "object " << i;
         EXPECT_EQ(b.meshSource, a.meshSource) << "object " << i;
         ASSERT_TRUE(b.mesh) << "object " << i;
@@ -156,7 +171,7 @@ TEST(SceneFile, PathsAreRelativeToTheSceneFileAndSurviveAMove) {
                              }())
                                  .object();
     EXPECT_EQ(root.value("format").toString(), QStringLiteral("mipgloss-scene"));
-    EXPECT_EQ(root.value("version").toInt(), 2);
+    EXPECT_EQ(root.value("version").toInt(), kSceneVersion);
     const QJsonArray objects = root.value("objects").toArray();
     ASSERT_EQ(objects.size(), 3);
     EXPECT_EQ(objects.at(0).toObject().value("mesh").toString(), QStringLiteral("../meshes/bunny.obj"));
@@ -240,7 +255,7 @@ TEST(SceneFile, NonFiniteNumbersAndWrongTypesAreRejected) {
     const std::string type =
         loadError(dir, "type.json", oneObjectScene("builtin:sphere", R"({"lambda": "3"})"));
     EXPECT_NE(type.find("type.json"), std::string::npos) << type;
-    EXPECT_NE(type.find("objects[0].material.lambda"), std::string::npos) << type;
+    EXPECT_NE(type.find(materialKey("lambda")), std::string::npos) << type;
     const std::string tint = loadError(
         dir, "tint.json", oneObjectScene("builtin:sphere", R"({"tint": [1, 2]})"));
     EXPECT_NE(tint.find("tint"), std::string::npos) << tint;
@@ -267,8 +282,8 @@ TEST(SceneFile, AbsurdSettingsAreClampedWithAWarning) {
         &report);
     ASSERT_TRUE(error.empty()) << error;
     const Scene scene = loadScene(fs::path(dir.path().toStdString()) / "absurd.json");
-    EXPECT_EQ(scene.objects[0].material.lambda, 8.0f);
-    EXPECT_EQ(scene.objects[1].material.lambda, 0.0f);
+    EXPECT_EQ(scene.materialOf(scene.objects[0]).lambda, 8.0f);
+    EXPECT_EQ(scene.materialOf(scene.objects[1]).lambda, 0.0f);
     EXPECT_EQ(scene.environment.faceSize, 4096);
     EXPECT_EQ(scene.display.samples, 4);
     EXPECT_EQ(scene.objects[0].mesh.get(), scene.objects[1].mesh.get());
@@ -320,46 +335,46 @@ TEST(SceneFile, VersionOneLambdaKeepsItsLookThroughTheSavedFaceSize) {
     ASSERT_EQ(big.objects.size(), 3u);
     EXPECT_EQ(big.environment.faceSize, 512);
     const double n3 = 3.0 * 512.0 * 512.0 * std::pow(4.0, -3.0) - 1.0;  // 12287
-    EXPECT_NEAR(lambdaToExponent(big.objects[0].material.lambda), n3, 1e-9 * n3);
-    EXPECT_NEAR(big.objects[0].material.lambda, 1.0, 1e-6) << "512 = 4·128: two levels sharper";
-    EXPECT_EQ(big.objects[1].material.lambda, 0.0f) << "the mirror stays a mirror";
+    EXPECT_NEAR(lambdaToExponent(big.materialOf(big.objects[0]).lambda), n3, 1e-9 * n3);
+    EXPECT_NEAR(big.materialOf(big.objects[0]).lambda, 1.0, 1e-6) << "512 = 4·128: two levels sharper";
+    EXPECT_EQ(big.materialOf(big.objects[1]).lambda, 0.0f) << "the mirror stays a mirror";
     const double n55 = 3.0 * 512.0 * 512.0 * std::pow(4.0, -5.5) - 1.0;
-    EXPECT_NEAR(lambdaToExponent(big.objects[2].material.lambda), n55, 1e-6 * n55);
+    EXPECT_NEAR(lambdaToExponent(big.materialOf(big.objects[2]).lambda), n55, 1e-6 * n55);
     EXPECT_NEAR(lambdaToExponent(big.display.backgroundLambda), n3, 1e-9 * n3);
 
     // At the reference size 128 the old and new meanings agree: λ unchanged.
     const Scene ref =
         loadScene(writeScene(dir, "v1_128.json", versionOneScene(128, 2.25, {3.0, 0.0, 6.75})));
-    EXPECT_FLOAT_EQ(ref.objects[0].material.lambda, 3.0f);
-    EXPECT_EQ(ref.objects[1].material.lambda, 0.0f);
-    EXPECT_FLOAT_EQ(ref.objects[2].material.lambda, 6.75f);
+    EXPECT_FLOAT_EQ(ref.materialOf(ref.objects[0]).lambda, 3.0f);
+    EXPECT_EQ(ref.materialOf(ref.objects[1]).lambda, 0.0f);
+    EXPECT_FLOAT_EQ(ref.materialOf(ref.objects[2]).lambda, 6.75f);
     EXPECT_FLOAT_EQ(ref.display.backgroundLambda, 2.25f);
 
     // A small face size: λ_old beyond that size's n = 0 point (old λ up to 16 was allowed) is n = 0.
     const Scene small =
         loadScene(writeScene(dir, "v1_32.json", versionOneScene(32, 0.0, {1.0, 16.0})));
     const double n1 = 3.0 * 32.0 * 32.0 / 4.0 - 1.0;  // 767
-    EXPECT_NEAR(lambdaToExponent(small.objects[0].material.lambda), n1, 1e-6 * n1);
-    EXPECT_NEAR(small.objects[0].material.lambda, 3.0, 1e-6) << "32 = 128/4: two levels blurrier";
-    EXPECT_EQ(lambdaToExponent(small.objects[1].material.lambda), 0.0);
-    EXPECT_TRUE(isValidLambda(small.objects[1].material.lambda));
+    EXPECT_NEAR(lambdaToExponent(small.materialOf(small.objects[0]).lambda), n1, 1e-6 * n1);
+    EXPECT_NEAR(small.materialOf(small.objects[0]).lambda, 3.0, 1e-6) << "32 = 128/4: two levels blurrier";
+    EXPECT_EQ(lambdaToExponent(small.materialOf(small.objects[1]).lambda), 0.0);
+    EXPECT_TRUE(isValidLambda(small.materialOf(small.objects[1]).lambda));
     EXPECT_EQ(small.display.backgroundLambda, 0.0f);
 
     // Without a face size a version 1 file meant 128 (the old default): unchanged.
     const Scene bare = loadScene(writeScene(dir, "v1_bare.json", oneObjectScene("builtin:sphere",
                                                                                R"({"lambda": 4.5})", 1)));
-    EXPECT_FLOAT_EQ(bare.objects[0].material.lambda, 4.5f);
+    EXPECT_FLOAT_EQ(bare.materialOf(bare.objects[0]).lambda, 4.5f);
 
     // Saved again, it is a version 2 file with the converted λ, which then loads unchanged.
     const fs::path resaved = fs::path(dir.path().toStdString()) / "resaved.json";
     saveScene(big, resaved);
     const Scene again = loadScene(resaved);
-    EXPECT_EQ(again.objects[0].material, big.objects[0].material);
+    EXPECT_EQ(again.materialOf(again.objects[0]), big.materialOf(big.objects[0]));
     EXPECT_EQ(again.display, big.display);
 }
 
 // Version 2 stores λ exactly, and a "phongExponent" beside it: n(λ), null for the mirror.
-TEST(SceneFile, VersionTwoRoundTripKeepsLambdaExactly) {
+TEST(SceneFile, RoundTripKeepsLambdaExactly) {
     QTemporaryDir dir;
     ASSERT_TRUE(dir.isValid());
     const std::vector<float> lambdas = {0.0f, 1e-6f, static_cast<float>(exponentToLambda(1024.0)),
@@ -370,8 +385,9 @@ TEST(SceneFile, VersionTwoRoundTripKeepsLambdaExactly) {
         o.name = "sphere";
         o.mesh = std::make_shared<const Mesh>(makeSphere(8, 16));
         o.meshSource = "builtin:sphere";
-        o.material.lambda = l;
-        scene.objects.push_back(o);
+        Material m;
+        m.lambda = l;
+        scene.addObject(o, m);
     }
     scene.environment.faceSize = 512;  // λ does not depend on it
     scene.display.backgroundLambda = 2.0f / 3.0f;
@@ -383,21 +399,21 @@ TEST(SceneFile, VersionTwoRoundTripKeepsLambdaExactly) {
     EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
     ASSERT_EQ(loaded.objects.size(), lambdas.size());
     for (std::size_t i = 0; i < lambdas.size(); ++i)
-        EXPECT_EQ(loaded.objects[i].material.lambda, lambdas[i]) << i;
+        EXPECT_EQ(loaded.materialOf(loaded.objects[i]).lambda, lambdas[i]) << i;
     EXPECT_EQ(loaded.display.backgroundLambda, scene.display.backgroundLambda);
 
     QFile in(QString::fromStdString(file.string()));
     ASSERT_TRUE(in.open(QIODevice::ReadOnly));
     const QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
-    EXPECT_EQ(root.value("version").toInt(), 2);
-    const QJsonArray objects = root.value("objects").toArray();
-    ASSERT_EQ(objects.size(), static_cast<qsizetype>(lambdas.size()));
-    const QJsonValue mirror = objects.at(0).toObject().value("material").toObject().value("phongExponent");
+    EXPECT_EQ(root.value("version").toInt(), kSceneVersion);
+    const QJsonArray materials = root.value("materials").toArray();
+    ASSERT_EQ(materials.size(), static_cast<qsizetype>(lambdas.size()));
+    const QJsonValue mirror = materials.at(0).toObject().value("phongExponent");
     EXPECT_TRUE(mirror.isNull()) << "the mirror's exponent is null (∞)";
-    const QJsonValue n1024 = objects.at(2).toObject().value("material").toObject().value("phongExponent");
+    const QJsonValue n1024 = materials.at(2).toObject().value("phongExponent");
     ASSERT_TRUE(n1024.isDouble());
     EXPECT_NEAR(n1024.toDouble(), 1024.0, 1024.0 * 1e-6);
-    const QJsonValue zero = objects.at(5).toObject().value("material").toObject().value("phongExponent");
+    const QJsonValue zero = materials.at(5).toObject().value("phongExponent");
     EXPECT_EQ(zero.toDouble(-1.0), 0.0);
 }
 
@@ -419,10 +435,10 @@ TEST(SceneFile, PhongExponentIsCheckedAgainstLambda) {
     const fs::path file = writeScene(
         dir, "stale.json", oneObjectScene("builtin:sphere", R"({"lambda": 2, "phongExponent": 767})"));
     const Scene stale = loadScene(file, &report);
-    EXPECT_EQ(stale.objects[0].material.lambda, 2.0f) << "λ decides";
+    EXPECT_EQ(stale.materialOf(stale.objects[0]).lambda, 2.0f) << "λ decides";
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_NE(report.warnings[0].find("stale.json"), std::string::npos) << report.warnings[0];
-    EXPECT_NE(report.warnings[0].find("objects[0].material.phongExponent"), std::string::npos)
+    EXPECT_NE(report.warnings[0].find(materialKey("phongExponent")), std::string::npos)
         << report.warnings[0];
 
     for (const char* bad : {"-1", "-0.5", "\"767\"", "[1]", "true"}) {
@@ -430,7 +446,7 @@ TEST(SceneFile, PhongExponentIsCheckedAgainstLambda) {
             dir, "badn.json",
             oneObjectScene("builtin:sphere", std::string(R"({"lambda": 3, "phongExponent": )") + bad + "}"));
         EXPECT_NE(error.find("badn.json"), std::string::npos) << bad << ": " << error;
-        EXPECT_NE(error.find("objects[0].material.phongExponent"), std::string::npos)
+        EXPECT_NE(error.find(materialKey("phongExponent")), std::string::npos)
             << bad << ": " << error;
     }
 }
@@ -445,7 +461,7 @@ TEST(SceneFile, AbsurdLambdaIsAnErrorAndChangesNothing) {
     doc.resetScene(good);
     const std::vector<float> before = [&] {
         std::vector<float> l;
-        for (const SceneObject& o : doc.scene().objects) l.push_back(o.material.lambda);
+        for (const SceneObject& o : doc.scene().objects) l.push_back(doc.scene().materialOf(o).lambda);
         return l;
     }();
     const DisplaySettings display = doc.scene().display;
@@ -479,7 +495,7 @@ TEST(SceneFile, AbsurdLambdaIsAnErrorAndChangesNothing) {
         }
         ASSERT_EQ(doc.objectCount(), static_cast<int>(before.size()));
         for (int i = 0; i < doc.objectCount(); ++i)
-            EXPECT_EQ(doc.object(i).material.lambda, before[static_cast<std::size_t>(i)]) << c.value;
+            EXPECT_EQ(doc.materialOf(i).lambda, before[static_cast<std::size_t>(i)]) << c.value;
     }
 
     // The background's λ likewise.
@@ -501,7 +517,7 @@ TEST(SceneFile, AbsurdLambdaIsAnErrorAndChangesNothing) {
 
     // Nor is a scene holding one ever written.
     Scene broken = good;
-    broken.objects[1].material.lambda = -1.0f;
+    broken.materialOf(broken.objects[1]).lambda = -1.0f;
     const fs::path out = fs::path(dir.path().toStdString()) / "never.json";
     try {
         saveScene(broken, out);
@@ -511,4 +527,86 @@ TEST(SceneFile, AbsurdLambdaIsAnErrorAndChangesNothing) {
             << e.what();
     }
     EXPECT_FALSE(fs::exists(out));
+}
+
+// Version 3: objects sharing a material still share one after a round trip, the file holds it
+// once, and its library entry survives.
+TEST(SceneFile, SharedMaterialsStaySharedAndAreWrittenOnce) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    const auto sphere = std::make_shared<const Mesh>(makeSphere(8, 16));
+    Scene scene;
+    Material gold;
+    gold.lambda = 2.5f;
+    gold.tint = {1.0f, 0.8f, 0.3f};
+    const MaterialId shared = scene.addMaterial("gold", gold, "Gold");
+    scene.addMaterial("unused", Material{});
+    for (const char* name : {"a", "b", "c"}) {
+        SceneObject o;
+        o.name = name;
+        o.mesh = sphere;
+        o.meshSource = "builtin:sphere";
+        o.material = shared;
+        scene.objects.push_back(o);
+    }
+    Material own;
+    own.lambda = 6.0f;
+    scene.objects[2].material = scene.addMaterial("c", own);
+    const fs::path file = fs::path(dir.path().toStdString()) / "shared.json";
+    saveScene(scene, file);
+
+    const Scene loaded = loadScene(file);
+    ASSERT_EQ(loaded.objects.size(), 3u);
+    EXPECT_EQ(loaded.objects[0].material, loaded.objects[1].material) << "a and b share one material";
+    EXPECT_NE(loaded.objects[0].material, loaded.objects[2].material);
+    EXPECT_EQ(loaded.materials.size(), 2u) << "the unused material is not written";
+    const NamedMaterial* g = loaded.findMaterial(loaded.objects[0].material);
+    ASSERT_NE(g, nullptr);
+    EXPECT_EQ(g->name, "gold");
+    EXPECT_EQ(g->libraryEntry, "Gold");
+    EXPECT_EQ(g->material, gold);
+    EXPECT_EQ(loaded.materialOf(loaded.objects[2]), own);
+
+    QFile in(QString::fromStdString(file.string()));
+    ASSERT_TRUE(in.open(QIODevice::ReadOnly));
+    const QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
+    EXPECT_EQ(root.value("materials").toArray().size(), 2);
+    EXPECT_EQ(root.value("objects").toArray().at(1).toObject().value("material").toString(), "gold");
+}
+
+// Versions 1 and 2 kept a material inside each object: each becomes one of its own, named after
+// its object and made unique.
+TEST(SceneFile, OlderVersionsGiveEachObjectAMaterialOfItsOwn) {
+    QTemporaryDir dir;
+    const fs::path file = writeScene(dir, "v2.json", R"({"format": "mipgloss-scene", "version": 2,
+        "objects": [{"name": "pot", "mesh": "builtin:sphere", "material": {"lambda": 3}},
+                    {"name": "pot", "mesh": "builtin:sphere", "material": {"lambda": 3}}]})");
+    const Scene scene = loadScene(file);
+    ASSERT_EQ(scene.objects.size(), 2u);
+    EXPECT_NE(scene.objects[0].material, scene.objects[1].material);
+    EXPECT_EQ(scene.findMaterial(scene.objects[0].material)->name, "pot");
+    EXPECT_EQ(scene.findMaterial(scene.objects[1].material)->name, "pot 2");
+    EXPECT_EQ(scene.materialOf(scene.objects[1]).lambda, 3.0f);
+}
+
+TEST(SceneFile, MaterialNamesMustResolveAndBeUnique) {
+    QTemporaryDir dir;
+    const std::string unknown = loadError(dir, "unknown.json", R"({"format": "mipgloss-scene", "version": 3,
+        "materials": [{"name": "gold"}],
+        "objects": [{"mesh": "builtin:sphere", "material": "silver"}]})");
+    EXPECT_NE(unknown.find("unknown.json"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("objects[0].material"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("silver"), std::string::npos) << unknown;
+    const std::string twice = loadError(dir, "twice.json", R"({"format": "mipgloss-scene", "version": 3,
+        "materials": [{"name": "gold"}, {"name": "gold", "lambda": 2}], "objects": []})");
+    EXPECT_NE(twice.find("materials[1].name"), std::string::npos) << twice;
+    const std::string empty = loadError(dir, "empty.json", R"({"format": "mipgloss-scene", "version": 3,
+        "materials": [{"name": ""}], "objects": []})");
+    EXPECT_NE(empty.find("materials[0].name"), std::string::npos) << empty;
+    // No "material": a mirror of its own.
+    const Scene bare = loadScene(writeScene(dir, "bare.json", R"({"format": "mipgloss-scene", "version": 3,
+        "objects": [{"name": "ball", "mesh": "builtin:sphere"}]})"));
+    ASSERT_EQ(bare.objects.size(), 1u);
+    EXPECT_EQ(bare.materialOf(bare.objects[0]), Material{});
+    EXPECT_NE(bare.findMaterial(bare.objects[0].material), nullptr);
 }

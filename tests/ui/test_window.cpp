@@ -194,7 +194,7 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
 
     QSignalSpy frames(w->viewport(), &Viewport::frameDrawn);
     typeInto(lambdaSpin, QStringLiteral("0.5"));
-    EXPECT_FLOAT_EQ(w->document()->object(1).material.lambda, 0.5f);
+    EXPECT_FLOAT_EQ(w->document()->materialOf(1).lambda, 0.5f);
     ASSERT_TRUE(waitUntil([&] { return frames.count() > 0; }, kFrameTimeoutMs)) << "no frame after the edit";
     // While λ moves the chain shows it: nothing is built or uploaded for the chain. Once λ rests
     // (EnvironmentManager::kSettleMs), one lobe cube is made for it: the settled picture.
@@ -225,7 +225,7 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
 
     // Typing an exponent sets λ through the one mapping (phong.h), whatever the face size.
     typeInto(exponentSpin, QStringLiteral("250"));
-    EXPECT_NEAR(w->document()->object(1).material.lambda, exponentToLambda(250.0), 1e-5);
+    EXPECT_NEAR(w->document()->materialOf(1).lambda, exponentToLambda(250.0), 1e-5);
     EXPECT_NEAR(lambdaSpin->value(), exponentToLambda(250.0), 0.005);
     EXPECT_NEAR(exponentSpin->value(), 250.0, 0.01);
     EXPECT_EQ(w->environments()->counters().chainBuilds, buildsBefore);
@@ -281,8 +281,8 @@ TEST(MainWindow, ImportedMeshesArePlacedBesideAndSizedToTheScene) {
         const SceneObject& o = doc->object(index);
         EXPECT_EQ(doc->selected(), index);
         EXPECT_EQ(QString::fromStdString(o.name), QFileInfo(path).completeBaseName());
-        EXPECT_EQ(o.material.lambda, MainWindow::kImportedLambda);
-        EXPECT_EQ(o.material.mode, LookupMode::Reflect);
+        EXPECT_EQ(w->document()->scene().materialOf(o).lambda, MainWindow::kImportedLambda);
+        EXPECT_EQ(w->document()->scene().materialOf(o).mode, LookupMode::Reflect);
         EXPECT_NEAR(o.worldRadius(), teapotRadius, 0.01f * teapotRadius) << path.toStdString();
         EXPECT_GT(o.worldCentre().x - o.worldRadius(), previousMaxX) << "must not overlap the scene";
         EXPECT_NEAR(o.worldCentre().y, sceneBounds(doc->scene()).centre().y, 0.5f * teapotRadius);
@@ -419,7 +419,7 @@ TEST(MainWindow, SaveAndOpenSceneRoundTrip) {
     QTemporaryDir dir;
     ASSERT_TRUE(dir.isValid());
     auto w = openWindow();
-    Material m = w->document()->object(2).material;
+    Material m = w->document()->materialOf(2);
     m.lambda = 1.25f;
     m.sharperAtGrazing = true;
     w->document()->setMaterial(2, m);
@@ -428,9 +428,9 @@ TEST(MainWindow, SaveAndOpenSceneRoundTrip) {
     EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — mine.json"));
     w->newScene();
     EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — Figure 1"));
-    EXPECT_NE(w->document()->object(2).material, m);
+    EXPECT_NE(w->document()->materialOf(2), m);
     ASSERT_TRUE(w->openScene(file)) << w->lastMessage().toStdString();
-    EXPECT_EQ(w->document()->object(2).material, m);
+    EXPECT_EQ(w->document()->materialOf(2), m);
     EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — mine.json"));
     ASSERT_TRUE(settledFrame(*w));
     const QString png = dir.filePath(QStringLiteral("shot.png"));
@@ -519,7 +519,7 @@ TEST(MainWindow, IdleDrawsNothingAndIrradianceComesOnlyWhenAsked) {
     const EnvironmentCounters before = w->environments()->counters();
     EXPECT_EQ(before.irradianceBuilds, 0u) << "Figure 1 does not use the irradiance map";
     EXPECT_FALSE(w->environments()->current()->irradiance);
-    Material m = w->document()->object(3).material;
+    Material m = w->document()->materialOf(3);
     ASSERT_EQ(m.mode, LookupMode::Normal);
     m.useIrradiance = true;
     w->document()->setMaterial(3, m);

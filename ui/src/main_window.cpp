@@ -641,10 +641,11 @@ void MainWindow::finishImport(const std::vector<ImportResult>& results) {
         object.name = QFileInfo(r.path).completeBaseName().toStdString();
         object.meshSource = QFileInfo(r.path).absoluteFilePath().toStdString();
         object.mesh = r.mesh;
-        object.material.lambda = kImportedLambda;
-        object.material.mode = LookupMode::Reflect;
+        Material material;
+        material.lambda = kImportedLambda;
+        material.mode = LookupMode::Reflect;
         object.transform = placeBeside(document_->scene(), *r.mesh);
-        document_->addObject(std::move(object));
+        document_->addObject(std::move(object), material);
         added << tr("%1 (%2 triangles)")
                      .arg(QFileInfo(r.path).fileName())
                      .arg(QLocale().toString(static_cast<qlonglong>(r.mesh->triangleCount())));

@@ -266,7 +266,7 @@ void MaterialPanel::refresh() {
 
 void MaterialPanel::refreshMaterial() {
     const bool valid = document_->isValidIndex(document_->selected());
-    const Material m = valid ? document_->object(document_->selected()).material : Material{};
+    const Material m = valid ? document_->materialOf(document_->selected()) : Material{};
     // The document holds only valid λ (scene_document.h); the clamp is for display alone.
     const double lambda = std::clamp(static_cast<double>(m.lambda), 0.0, kMaxLambda);
     const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_), b4(mode_),
@@ -312,7 +312,7 @@ void MaterialPanel::refreshTransform() {
 void MaterialPanel::editMaterial(const std::function<void(Material&)>& edit) {
     const int index = document_->selected();
     if (!document_->isValidIndex(index)) return;
-    Material m = document_->object(index).material;
+    Material m = document_->materialOf(index);
     edit(m);
     document_->setMaterial(index, m);
 }
@@ -340,7 +340,7 @@ void MaterialPanel::setLambda(double lambda) {
 void MaterialPanel::chooseTint() {
     const int index = document_->selected();
     if (!document_->isValidIndex(index)) return;
-    const QColor chosen = QColorDialog::getColor(colorFromLinear(document_->object(index).material.tint),
+    const QColor chosen = QColorDialog::getColor(colorFromLinear(document_->materialOf(index).tint),
                                                  this, tr("Tint (shown in sRGB, stored linear)"));
     if (!chosen.isValid()) return;  // cancelled
     const Rgb tint = linearFromColor(chosen);

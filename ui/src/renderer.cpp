@@ -151,7 +151,7 @@ struct Renderer::Impl {
                 continue;
             }
             const GpuMesh& mesh = gpuMesh(object.mesh);
-            const Material& m = object.material;
+            const Material& m = scene.materialOf(object);
             const float lambda = isValidLambda(m.lambda) ? m.lambda : 0.0f;
             int lookup = m.mode == LookupMode::Reflect ? 0 : 1;
             if (lookup == 1 && m.useIrradiance && irradianceReady) lookup = 2;

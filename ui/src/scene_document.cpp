@@ -2,6 +2,8 @@
 
 #include "mipgloss/ibl/phong.h"
 
+#include <QUndoStack>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -34,11 +36,38 @@ bool isFinite(const Transform& t) {
 
 }  // namespace
 
-SceneDocument::SceneDocument(QObject* parent) : QObject(parent) {}
+namespace {
+Material admitted(Material m) {
+    m = sanitized(m);
+    m.lambda = admittedLambda(m.lambda);
+    return m;
+}
+}  // namespace
+
+SceneDocument::SceneDocument(QObject* parent) : QObject(parent), undoStack_(new QUndoStack(this)) {}
+
+void SceneDocument::applyLibraryMaterial(int index, const LibraryMaterial& entry) {
+    if (!isValidIndex(index)) return;
+    const Material wanted = admitted(entry.material);
+    MaterialId id = kNoMaterial;
+    for (const NamedMaterial& m : scene_.materials)
+        if (m.libraryEntry == entry.name && m.material == wanted) id = m.id;
+    if (id == kNoMaterial) id = scene_.addMaterial(entry.name, wanted, entry.name);
+    SceneObject& o = scene_.objects[static_cast<std::size_t>(index)];
+    if (o.material == id) return;
+    o.material = id;
+    emit materialChanged(index);
+    emit changed();
+}
+
+
+int SceneDocument::addObject(SceneObject object, const Material& material) {
+    object.material = scene_.addMaterial(object.name, admitted(material));
+    return addObject(std::move(object));
+}
 
 int SceneDocument::addObject(SceneObject object) {
-    object.material = sanitized(object.material);
-    object.material.lambda = admittedLambda(object.material.lambda);
+    if (!scene_.findMaterial(object.material)) object.material = scene_.addMaterial(object.name, Material{});
     scene_.objects.push_back(std::move(object));
     const int index = objectCount() - 1;
     emit objectsChanged();
@@ -79,12 +108,16 @@ int SceneDocument::duplicateObject(int index) {
 
 void SceneDocument::setMaterial(int index, const Material& material) {
     if (!isValidIndex(index)) return;
-    Material& current = scene_.objects[static_cast<std::size_t>(index)].material;
+    const MaterialId id = scene_.objects[static_cast<std::size_t>(index)].material;
+    NamedMaterial* named = scene_.findMaterial(id);
+    if (!named) return;
+    Material& current = named->material;
     Material m = sanitized(material);
     if (!validLambda(m.lambda)) m.lambda = current.lambda;  // refused: the last good λ stays
     if (current == m) return;
     current = m;
-    emit materialChanged(index);
+    for (int i = 0; i < objectCount(); ++i)
+        if (object(i).material == id) emit materialChanged(i);
     emit changed();
 }
 
@@ -134,10 +167,9 @@ void SceneDocument::setDisplay(const DisplaySettings& settings) {
 }
 
 void SceneDocument::resetScene(Scene scene) {
-    for (SceneObject& o : scene.objects) {
-        o.material = sanitized(o.material);
-        o.material.lambda = admittedLambda(o.material.lambda);
-    }
+    for (NamedMaterial& m : scene.materials) m.material = admitted(m.material);
+    for (SceneObject& o : scene.objects)
+        if (!scene.findMaterial(o.material)) o.material = scene.addMaterial(o.name, Material{});
     scene.display.backgroundLambda = admittedLambda(scene.display.backgroundLambda);
     const bool environmentDiffers = !(scene_.environment == scene.environment);
     const bool displayDiffers = !(scene_.display == scene.display);

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/scene_file.h"
 
+#include "mipgloss/ui/atomic_file.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/phong.h"
 
@@ -360,11 +362,14 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
         {"exposureEv", d.exposureEv},         {"toneMap", toneMapName(d.toneMap)},
         {"samples", d.samples},
     };
-    QJsonArray objects;
-    for (const SceneObject& o : scene.objects) {
-        const Material& m = o.material;
+    // The materials the objects use, once each, in the scene's order.
+    QJsonArray materials;
+    for (const NamedMaterial& named : scene.materials) {
+        if (scene.usersOf(named.id) == 0) continue;
+        const Material& m = named.material;
         const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
         QJsonObject material{
+            {"name", QString::fromStdString(named.name)},
             {"lambda", m.lambda},
             {"phongExponent", std::isinf(exponent) ? QJsonValue(QJsonValue::Null) : QJsonValue(exponent)},
             {"mode", lookupModeName(m.mode)},
@@ -372,22 +377,29 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
             {"tint", toArray(m.tint)},
             {"sharperAtGrazing", m.sharperAtGrazing},
         };
+        if (!named.libraryEntry.empty()) material.insert("library", QString::fromStdString(named.libraryEntry));
+        materials.append(material);
+    }
+    QJsonArray objects;
+    for (const SceneObject& o : scene.objects) {
+        const NamedMaterial* named = scene.findMaterial(o.material);
         QJsonObject transform{
             {"translation", toArray(o.transform.translation)},
             {"rotationDegrees", toArray(o.transform.rotationDegrees)},
             {"scale", o.transform.scale},
         };
-        objects.append(QJsonObject{
+        QJsonObject object{
             {"name", QString::fromStdString(o.name)},
             {"mesh", QString::fromStdString(relativePathForScene(o.meshSource, sceneFile))},
             {"visible", o.visible},
             {"transform", transform},
-            {"material", material},
-        });
+        };
+        if (named) object.insert("material", QString::fromStdString(named->name));
+        objects.append(object);
     }
     QJsonObject root{
         {"format", kSceneFormat}, {"version", kSceneVersion}, {"environment", environment},
-        {"display", display},     {"objects", objects},
+        {"display", display},     {"materials", materials}, {"objects", objects},
     };
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
@@ -415,6 +427,25 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
     reader.setLambdaMeaning(version, scene.environment.faceSize);
     scene.display = reader.display(reader.object(root, "display", "display", false));
 
+    // Version 3: named materials, referred to by name from the objects.
+    const QJsonValue materials = root.value("materials");
+    if (version >= kSceneVersionNamedMaterials) {
+        if (!materials.isUndefined() && !materials.isArray()) reader.fail("\"materials\" must be an array");
+        const QJsonArray array = materials.toArray();
+        for (qsizetype i = 0; i < array.size(); ++i) {
+            const std::string where = "materials[" + std::to_string(i) + "]";
+            if (!array.at(i).isObject()) reader.fail("\"" + where + "\" must be an object");
+            const QJsonObject m = array.at(i).toObject();
+            const std::string name = reader.string(m, "name", where, nullptr);
+            if (name.empty()) reader.fail("\"" + where + ".name\" is empty");
+            if (scene.findMaterialNamed(name))
+                reader.fail("\"" + where + ".name\" \"" + name + "\" names a second material");
+            const std::string none;
+            const std::string library = reader.string(m, "library", where, &none);
+            scene.addMaterial(name, reader.material(m, where), library);
+        }
+    }
+
     const QJsonValue objects = root.value("objects");
     if (!objects.isUndefined() && !objects.isArray()) reader.fail("\"objects\" must be an array");
     const QJsonArray array = objects.toArray();
@@ -428,8 +459,23 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
         object.visible = reader.boolean(o, "visible", where, true);
         object.transform = reader.transform(reader.object(o, "transform", where + ".transform", false),
                                             where + ".transform");
-        object.material = reader.material(reader.object(o, "material", where + ".material", false),
-                                          where + ".material");
+        if (version >= kSceneVersionNamedMaterials) {
+            const std::string none;
+            const std::string name = reader.string(o, "material", where, &none);
+            if (name.empty()) {
+                object.material = scene.addMaterial(object.name, Material{});
+            } else {
+                const NamedMaterial* named = scene.findMaterialNamed(name);
+                if (!named)
+                    reader.fail("\"" + where + ".material\" \"" + name + "\" is not in \"materials\"");
+                object.material = named->id;
+            }
+        } else {
+            // Versions 1 and 2 kept a material inside each object: it becomes one of its own.
+            object.material = scene.addMaterial(
+                object.name, reader.material(reader.object(o, "material", where + ".material", false),
+                                             where + ".material"));
+        }
         const std::string source = reader.string(o, "mesh", where, nullptr);
         object.mesh = reader.mesh(source, where + " (\"" + object.name + "\")", object.meshSource);
         scene.objects.push_back(std::move(object));
@@ -451,14 +497,13 @@ void saveScene(const Scene& scene, const fs::path& file) {
         const SceneObject& o = scene.objects[i];
         if (o.meshSource.empty())
             throw SceneFileError(file, "object \"" + o.name + "\" has no mesh file to refer to");
-        checkLambda(o.material.lambda, "objects[" + std::to_string(i) + "].material.lambda");
+        checkLambda(scene.materialOf(o).lambda, "objects[" + std::to_string(i) + "].material.lambda");
     }
-    QSaveFile out(QString::fromStdString(file.string()));
-    if (!out.open(QIODevice::WriteOnly))
-        throw SceneFileError(file, "cannot write: " + out.errorString().toStdString());
-    const QByteArray json = sceneToJson(scene, file);
-    if (out.write(json) != json.size() || !out.commit())
-        throw SceneFileError(file, "cannot write: " + out.errorString().toStdString());
+    try {
+        writeFileAtomically(file, sceneToJson(scene, file));
+    } catch (const FileError& e) {
+        throw SceneFileError(file, e.reason());
+    }
 }
 
 Scene loadScene(const fs::path& file, SceneFileReport* report) {

@@ -31,7 +31,7 @@ QVariant SceneListModel::data(const QModelIndex& index, int role) const {
         case Qt::EditRole: return QString::fromStdString(object.name);
         case Qt::CheckStateRole: return object.visible ? Qt::Checked : Qt::Unchecked;
         case Qt::ToolTipRole: {
-            const Material& m = object.material;
+            const Material& m = document_->materialOf(index.row());
             const qlonglong triangles =
                 object.mesh ? static_cast<qlonglong>(object.mesh->triangleCount()) : 0;
             QString text = tr("λ %1 · %2").arg(m.lambda, 0, 'f', 2).arg(lookupModeName(m.mode));

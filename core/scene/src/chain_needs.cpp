@@ -21,7 +21,7 @@ ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize) {
     if (scene.display.showBackground) reach(scene.display.backgroundLambda);
     for (const SceneObject& object : scene.objects) {
         if (!object.visible) continue;
-        const Material& m = object.material;
+        const Material& m = scene.materialOf(object);
         if (m.mode == LookupMode::Normal && m.useIrradiance) {
             needs.irradiance = true;
             continue;  // the irradiance map replaces the chain for this object

@@ -21,7 +21,7 @@ std::vector<int> lobesInUse(const Scene& scene) {
     if (scene.display.showBackground) use(scene.display.backgroundLambda);
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh) continue;
-        const Material& m = object.material;
+        const Material& m = scene.materialOf(object);
         if (m.mode == LookupMode::Normal && m.useIrradiance) continue;
         use(m.lambda);
     }

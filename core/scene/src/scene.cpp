@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <utility>
 
 namespace mipgloss {
 
@@ -87,11 +89,78 @@ Scene makeFigure1Scene() {
         object.meshSource = "builtin:teapot";
         object.transform.translation =
             glm::vec3((static_cast<float>(i) - 1.5f) * spacing, 0.0f, 0.0f) - b.centre();
-        object.material.lambda = entries[i].lambda;
-        object.material.mode = entries[i].mode;
-        scene.objects.push_back(std::move(object));
+        Material material;
+        material.lambda = entries[i].lambda;
+        material.mode = entries[i].mode;
+        scene.addObject(std::move(object), material);
     }
     return scene;
+}
+
+std::string uniqueName(const std::string& base, const std::function<bool(const std::string&)>& taken) {
+    const std::string stem = base.empty() ? std::string("Material") : base;
+    if (!taken(stem)) return stem;
+    for (int n = 2;; ++n) {
+        std::string candidate = stem + " " + std::to_string(n);
+        if (!taken(candidate)) return candidate;
+    }
+}
+
+const NamedMaterial* Scene::findMaterial(MaterialId id) const {
+    if (id == kNoMaterial) return nullptr;
+    for (const NamedMaterial& m : materials)
+        if (m.id == id) return &m;
+    return nullptr;
+}
+
+NamedMaterial* Scene::findMaterial(MaterialId id) {
+    return const_cast<NamedMaterial*>(std::as_const(*this).findMaterial(id));
+}
+
+const NamedMaterial* Scene::findMaterialNamed(std::string_view name) const {
+    for (const NamedMaterial& m : materials)
+        if (m.name == name) return &m;
+    return nullptr;
+}
+
+const Material& Scene::materialOf(const SceneObject& object) const {
+    static const Material kDefault{};
+    const NamedMaterial* m = findMaterial(object.material);
+    return m ? m->material : kDefault;
+}
+
+Material& Scene::materialOf(const SceneObject& object) {
+    NamedMaterial* m = findMaterial(object.material);
+    if (!m) throw std::out_of_range("object \"" + object.name + "\" has no material");
+    return m->material;
+}
+
+MaterialId Scene::nextMaterialId() const {
+    MaterialId largest = kNoMaterial;
+    for (const NamedMaterial& m : materials) largest = std::max(largest, m.id);
+    return largest + 1;
+}
+
+MaterialId Scene::addMaterial(const std::string& name, const Material& material,
+                              const std::string& libraryEntry) {
+    NamedMaterial m;
+    m.id = nextMaterialId();
+    m.name = uniqueName(name, [this](const std::string& n) { return findMaterialNamed(n) != nullptr; });
+    m.material = material;
+    m.libraryEntry = libraryEntry;
+    materials.push_back(std::move(m));
+    return materials.back().id;
+}
+
+int Scene::addObject(SceneObject object, const Material& material) {
+    object.material = addMaterial(object.name, material);
+    objects.push_back(std::move(object));
+    return static_cast<int>(objects.size()) - 1;
+}
+
+int Scene::usersOf(MaterialId id) const {
+    return static_cast<int>(std::count_if(objects.begin(), objects.end(),
+                                          [id](const SceneObject& o) { return o.material == id; }));
 }
 
 Bounds sceneBounds(const Scene& scene) {

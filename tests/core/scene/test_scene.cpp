@@ -89,10 +89,10 @@ TEST(Figure1Scene, IsThePapersFigure) {
     ASSERT_EQ(scene.objects.size(), 4u);
     const float lambdas[] = {0.0f, 3.5f, 5.0f, 7.0f};
     for (std::size_t i = 0; i < 4; ++i) {
-        EXPECT_EQ(scene.objects[i].material.lambda, lambdas[i]);
-        EXPECT_EQ(scene.objects[i].material.mode, i == 3 ? LookupMode::Normal : LookupMode::Reflect);
+        EXPECT_EQ(scene.materialOf(scene.objects[i]).lambda, lambdas[i]);
+        EXPECT_EQ(scene.materialOf(scene.objects[i]).mode, i == 3 ? LookupMode::Normal : LookupMode::Reflect);
         EXPECT_EQ(scene.objects[i].mesh, scene.objects[0].mesh) << "one teapot, shared";
-        EXPECT_FALSE(scene.objects[i].material.sharperAtGrazing) << "the paper's look by default";
+        EXPECT_FALSE(scene.materialOf(scene.objects[i]).sharperAtGrazing) << "the paper's look by default";
     }
     EXPECT_EQ(scene.environment.faceSize, 128);
     EXPECT_EQ(scene.environment.source, kBuiltinEnvironment);
@@ -108,8 +108,7 @@ Scene sceneWith(std::initializer_list<Material> materials) {
     for (const Material& m : materials) {
         SceneObject o;
         o.mesh = sphere;
-        o.material = m;
-        scene.objects.push_back(o);
+        scene.addObject(o, m);
     }
     return scene;
 }

@@ -1,27 +1,36 @@
-// Scene files: JSON, format "mipgloss-scene", version 2 (version 1 files still load, see below).
+// Scene files: JSON, format "mipgloss-scene", version 3 (versions 1 and 2 still load, see below).
 //
 //   {
-//     "format": "mipgloss-scene", "version": 2,
+//     "format": "mipgloss-scene", "version": 3,
 //     "environment": {"source": "env/sky.exr" | "builtin:courtyard", "layout": "auto",
 //                     "handedness": "right", "faceSize": 128, "builder": "phong",
 //                     "rotationDegrees": 0},
 //     "display": {"showBackground": true, "backgroundLambda": 0, "exposureEv": 0,
 //                 "toneMap": "aces", "samples": 4},
+//     "materials": [{"name": "gold", "library": "Gold",
+//                    "lambda": 3, "phongExponent": 767, "mode": "reflect" | "normal",
+//                    "useIrradiance": false, "tint": [r, g, b], "sharperAtGrazing": false}],
 //     "objects": [{"name": "bunny", "mesh": "meshes/bunny.obj" | "builtin:teapot" | "builtin:sphere",
 //                  "visible": true,
 //                  "transform": {"translation": [x, y, z], "rotationDegrees": [x, y, z], "scale": 1},
-//                  "material": {"lambda": 3, "phongExponent": 767, "mode": "reflect" | "normal",
-//                               "useIrradiance": false, "tint": [r, g, b],
-//                               "sharperAtGrazing": false}}]
+//                  "material": "gold"}]
 //   }
 //
-// λ ("lambda", "backgroundLambda"). Version 2 stores λ with its one meaning (phong.h): the Phong
+// Materials (version 3). A scene stores the materials its objects use, once each, under names
+// unique in the file; objects refer to one by name, and objects naming the same one share it.
+// "library" (optional) is the library entry the material was applied from. A material name that is
+// empty or used twice, or an object naming a material not in "materials", is an error naming the
+// key. An object without "material" gets a default material (a mirror) of its own. Materials no
+// object uses are not written. Versions 1 and 2 kept a "material" object inside each object; each
+// becomes a material of its own named after its object (made unique: "teapot", "teapot 2").
+//
+// λ ("lambda", "backgroundLambda"). Versions 2 and 3 store λ with its one meaning (phong.h): the Phong
 // exponent n(λ) = lambdaToExponent(λ) = 3·128²·4^−λ − 1, the same lobe under any environment and
 // face size, λ = 0 the mirror. It must be a number in [0, kMaxLambda]; anything else (negative,
 // above kMaxLambda, a string, null) is an error naming the file, the key (e.g.
 // "objects[2].material.lambda") and the value, never a silent clamp. A missing key defaults to 0.
 //
-// "phongExponent" (version 2, written for every material) is information for a reader of the file:
+// "phongExponent" (versions 2 and 3, written for every material) is information for a reader of the file:
 // lambdaToExponent(λ), null for the mirror (λ = 0). λ alone decides the look. On load it is
 // optional; when present it must be null or a finite number >= 0 (anything else is an error like
 // an absurd λ), and if it disagrees with λ (relative difference above 1e-4, or null against a
@@ -36,7 +45,7 @@
 // (λ_old = 0 stays 0, the mirror; a face size of 128 leaves λ unchanged; λ_old beyond the old
 // n = 0 point maps to n = 0, λ ≈ 7.79). Version 1 accepted λ_old in [0, 16] (its old limit);
 // values outside are errors as above. "phongExponent" is not read from version 1 files. Files are
-// always written as version 2.
+// always written as version 3.
 //
 // Paths: saved relative to the scene file's folder when the file lies inside it or at most two
 // levels above it (so a project folder moved as a whole keeps working), absolute otherwise; loaded
@@ -65,7 +74,9 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 2;
+inline constexpr int kSceneVersion = 3;
+// The version that named materials and shared them between objects.
+inline constexpr int kSceneVersionNamedMaterials = 3;
 // The version whose λ meant a mip level of the environment's own face size (see above).
 inline constexpr int kSceneVersionLegacyLambda = 1;
 

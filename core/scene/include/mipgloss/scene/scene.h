@@ -13,8 +13,11 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mipgloss {
@@ -45,6 +48,26 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+// A scene's materials are named and shared: an object refers to one by id, several objects may
+// refer to the same one, and editing it changes every object that uses it. Ids are unique within a
+// scene and never reused while it is open; names are unique within a scene too (scene files refer
+// to materials by name). 0 is no material: the object is drawn with Material{} (a mirror).
+using MaterialId = std::uint32_t;
+inline constexpr MaterialId kNoMaterial = 0;
+
+struct NamedMaterial {
+    MaterialId id = kNoMaterial;
+    std::string name;
+    Material material;
+    std::string libraryEntry;  // the library entry it was applied from, "" if none
+
+    bool operator==(const NamedMaterial&) const = default;
+};
+
+// `base` if `taken(base)` is false, otherwise the first of "base 2", "base 3", ... that is free.
+// An empty base is "Material".
+std::string uniqueName(const std::string& base, const std::function<bool(const std::string&)>& taken);
+
 struct Transform {
     glm::vec3 translation{0.0f};
     glm::vec3 rotationDegrees{0.0f};  // about Z first, then X, then Y (matrix())
@@ -59,12 +82,14 @@ struct SceneObject {
     std::shared_ptr<const Mesh> mesh;
     std::string meshSource;  // the file it came from, or "builtin:teapot" / "builtin:sphere"
     Transform transform;
-    Material material;
+    MaterialId material = kNoMaterial;
     bool visible = true;
 
     // World-space bounding sphere of the mesh under the transform.
     glm::vec3 worldCentre() const;
     float worldRadius() const;
+
+    bool operator==(const SceneObject&) const = default;  // the same mesh is the same pointer
 };
 
 inline constexpr const char* kBuiltinEnvironment = "builtin:courtyard";
@@ -90,8 +115,27 @@ struct DisplaySettings {
 
 struct Scene {
     std::vector<SceneObject> objects;
+    std::vector<NamedMaterial> materials;  // in the order they were added; unused ones may stay
     EnvironmentSettings environment;
     DisplaySettings display;
+
+    const NamedMaterial* findMaterial(MaterialId id) const;
+    NamedMaterial* findMaterial(MaterialId id);
+    const NamedMaterial* findMaterialNamed(std::string_view name) const;
+    // What `object` is drawn with: its material's parameters, Material{} when it has none.
+    const Material& materialOf(const SceneObject& object) const;
+    // The same, to edit; throws std::out_of_range when the object has no material.
+    Material& materialOf(const SceneObject& object);
+    // Adds a material under uniqueName(name) with a fresh id and returns the id.
+    MaterialId addMaterial(const std::string& name, const Material& material,
+                           const std::string& libraryEntry = {});
+    // Appends `object` with a material of its own named after it; returns its index.
+    int addObject(SceneObject object, const Material& material);
+    // How many objects use material `id`.
+    int usersOf(MaterialId id) const;
+    MaterialId nextMaterialId() const;  // one above the largest id in use
+
+    bool operator==(const Scene&) const = default;
 };
 
 // The paper's Figure 1: four teapots in a row, λ = 0 (mirror), 3.5 and 5.0 looked up by the

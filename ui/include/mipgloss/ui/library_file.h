@@ -1,0 +1,49 @@
+// Material library files: JSON, format "mipgloss-library", version 1.
+//
+//   {
+//     "format": "mipgloss-library", "version": 1,
+//     "materials": [{"name": "Gold", "lambda": 3, "phongExponent": 767, "mode": "reflect",
+//                    "useIrradiance": false, "tint": [1, 0.8, 0.3], "sharperAtGrazing": false}]
+//   }
+//
+// The material fields are the scene file's (scene_file.h, version 3), with the same checks: λ in
+// [0, kMaxLambda] (never silently clamped), "phongExponent" informative, tint finite and >= 0.
+// Names must be valid (library.h materialNameProblem) and unique.
+//
+// Reading is all-or-nothing and never modifies the file: anything unreadable (not JSON, not a
+// library, a newer version, a wrong type, an absurd value, a duplicate name) is a LibraryFileError
+// naming the file and the reason. Writing is atomic (atomic_file.h): a reader, or a process killed
+// at any moment, sees the old file or the new one, never a mixture.
+#pragma once
+
+#include "mipgloss/io/file_error.h"
+#include "mipgloss/scene/library.h"
+
+#include <QByteArray>
+
+#include <filesystem>
+
+namespace mipgloss::ui {
+
+inline constexpr const char* kLibraryFormat = "mipgloss-library";
+inline constexpr int kLibraryVersion = 1;
+
+class LibraryFileError : public FileError {
+public:
+    using FileError::FileError;
+};
+
+QByteArray libraryToJson(const MaterialLibrary& library);
+// `file` names the file in errors. Throws LibraryFileError.
+MaterialLibrary libraryFromJson(const QByteArray& json, const std::filesystem::path& file);
+
+// Throws LibraryFileError (including "no such file").
+MaterialLibrary loadLibrary(const std::filesystem::path& file);
+// Atomic; creates the folder if missing. Throws LibraryFileError.
+void saveLibrary(const MaterialLibrary& library, const std::filesystem::path& file);
+
+// The user's library: library.json in QStandardPaths::AppDataLocation (needs the application's
+// organisation and name set, as mipgloss-gui does).
+std::filesystem::path defaultLibraryPath();
+
+}  // namespace mipgloss::ui
