@@ -1,4 +1,4 @@
-// The `mipgloss` command line: bake, bench, and (with the UI) render, bench-render. Thin: everything it does lives in mipgloss::core.
+// The `mipgloss` command line: bake, bench, and (with the UI) render, bench-render, library. Thin: everything it does lives in mipgloss::core.
 #include "mipgloss/io/bake.h"
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/io/default_env.h"
@@ -10,6 +10,7 @@
 #include "cli_args.h"
 
 #ifdef MIPGLOSS_WITH_UI
+#include "library_command.h"
 #include "render_command.h"
 #endif
 #ifdef MIPGLOSS_WITH_PLOT
@@ -540,7 +541,7 @@ int main(int argc, char** argv) {
         if (cmd == "--help" || cmd == "-h" || cmd == "help") {
             std::cout << kUsage;
 #ifdef MIPGLOSS_WITH_UI
-            std::cout << app::kRenderUsage;
+            std::cout << app::kRenderUsage << app::kLibraryUsage;
 #endif
             return 0;
         }
@@ -553,6 +554,7 @@ int main(int argc, char** argv) {
 #ifdef MIPGLOSS_WITH_UI
         if (cmd == "render") return app::runRender(Args(argc, argv, 2), argv[0]);
         if (cmd == "bench-render") return app::runRenderBench(Args(argc, argv, 2), argv[0]);
+        if (cmd == "library") return app::runLibrary(Args(argc, argv, 2), argv[0]);
 #endif
         throw UsageError("unknown command '" + cmd + "'");
     } catch (const UsageError& e) {

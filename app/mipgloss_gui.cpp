@@ -1,11 +1,13 @@
 // mipgloss-gui: the desktop material previewer. A thin shell over mipgloss::ui::MainWindow.
 //
-//   mipgloss-gui [FILES...]                 scenes (.json), meshes, environment images or folders
+//   mipgloss-gui [FILES...]                 scenes (.json), meshes, environment images or folders;
+//                                           an autosave a crashed session left is offered first
 //   mipgloss-gui --time-to-first-frame      prints the time from process start to the first frame
 //                                           drawn with the environment, then exits
 //   mipgloss-gui --screenshot FILE          saves the first complete frame to FILE, then exits
 //
 // Exit status: 0 done, 1 bad arguments, 2 no usable OpenGL, 3 timed out, 4 screenshot not written.
+#include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/gl_format.h"
 #include "mipgloss/ui/main_window.h"
@@ -15,6 +17,7 @@
 #include <QIcon>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QImage>
 #include <QTimer>
 
@@ -63,6 +66,9 @@ int main(int argc, char** argv) {
 
     mipgloss::ui::setDefaultSurfaceFormat();  // before any widget or context exists
     QApplication app(argc, argv);
+    // QStandardPaths and QSettings place the user's files by these: the library, autosaves
+    // (~/.local/share/mipgloss/mipgloss/) and settings (~/.config/mipgloss/mipgloss.conf).
+    QApplication::setOrganizationName(QStringLiteral("mipgloss"));
     QApplication::setApplicationName(QStringLiteral("mipgloss"));
     QApplication::setWindowIcon(QIcon(QStringLiteral(":/mipgloss/desktop/mipgloss.png")));
     QApplication::setApplicationVersion(QStringLiteral(MIPGLOSS_VERSION));
@@ -107,8 +113,11 @@ int main(int argc, char** argv) {
 
     mipgloss::ui::MainWindow window;
     window.show();
+    // Measuring or capturing runs unattended: no question about an autosave then.
+    const bool unattended = timing || !screenshot.isEmpty();
+    if (!unattended) window.offerAutosaveRestore();
     window.openFiles(parser.positionalArguments());
-    if (!timing && screenshot.isEmpty()) return QApplication::exec();
+    if (!unattended) return QApplication::exec();
 
     // Measuring or capturing: wait for a frame drawn with the environment uploaded.
     mipgloss::ui::Viewport* viewport = window.viewport();
@@ -138,9 +147,15 @@ int main(int argc, char** argv) {
             if (!screenshot.isEmpty()) {
                 const QImage image = parser.isSet(wholeWindowOption) ? window.grab().toImage()
                                                                      : viewport->grabFramebuffer();
-                if (image.isNull() || !image.save(screenshot)) {
-                    std::fprintf(stderr, "mipgloss-gui: %s: could not write the screenshot\n",
-                                 qPrintable(screenshot));
+                QByteArray format = QFileInfo(screenshot).suffix().toUpper().toLatin1();
+                if (format.isEmpty()) format = "PNG";
+                try {
+                    if (image.isNull()) throw mipgloss::FileError(screenshot.toStdString(), "nothing was drawn");
+                    mipgloss::ui::writeFileAtomically(screenshot.toStdString(), [&](QIODevice& device) {
+                        return image.save(&device, format.constData());
+                    });
+                } catch (const mipgloss::FileError& e) {
+                    std::fprintf(stderr, "mipgloss-gui: could not write the screenshot: %s\n", e.what());
                     QCoreApplication::exit(4);
                     return;
                 }

@@ -1,5 +1,8 @@
 #include "render_command.h"
 
+#include "material_args.h"
+#include "offscreen_session.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
@@ -8,11 +11,13 @@
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/scene.h"
-#include "mipgloss/ui/gl_format.h"
+#include "mipgloss/ui/atomic_file.h"
+#include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/offscreen.h"
 #include "mipgloss/ui/scene_file.h"
 
-#include <QGuiApplication>
+#include <QFileInfo>
+#include <QIODevice>
 #include <QImage>
 #include <QString>
 
@@ -34,8 +39,8 @@ namespace fs = std::filesystem;
 namespace mipgloss::app {
 
 const char* const kRenderUsage = R"(
-  mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--lambda L | --exponent N]
-                  [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
+  mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--library LIB.json --material NAME]
+                  [--lambda L | --exponent N] [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr
@@ -47,6 +52,9 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   SCENE.json     a scene saved by mipgloss-gui
   --env FILE     environment (as for bake); replaces the scene's
   --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM), repeatable; replaces the scene's objects
+  --library LIB.json --material NAME
+                 every object wears material NAME of the library (one shared material);
+                 --lambda, --exponent and --mode, when given too, change it
   --lambda L     every object's blur λ: the Phong lobe n = 3*128^2*4^-L - 1, the same at any
                  face size (0 = mirror; 0 to 8)
   --exponent N   every object's lobe by its Phong exponent instead (N >= 0; "mirror" or inf)
@@ -82,47 +90,24 @@ bool parseSize(const std::string& text, int& w, int& h) {
     return w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
 }
 
-float parseFloat(const std::string& flag, const std::string& value, float lo, float hi) {
-    char* end = nullptr;
-    const float v = std::strtof(value.c_str(), &end);
-    if (end == value.c_str() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-        throw UsageError(flag + " needs a number from " + std::to_string(lo) + " to " +
-                         std::to_string(hi) + ", got '" + value + "'");
-    return v;
+// Entry `name` of library `file`. Throws LibraryFileError naming the file.
+LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
+    ui::LibraryFileReport report;
+    const MaterialLibrary library = ui::loadLibrary(file, &report);
+    for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    if (const LibraryMaterial* entry = library.find(name)) return *entry;
+    std::string names;
+    for (const LibraryMaterial& e : library.entries) names += (names.empty() ? "\"" : ", \"") + e.name + "\"";
+    throw ui::LibraryFileError(
+        file, "no material named \"" + name + "\"" +
+                  (names.empty() ? std::string(" (the library is empty)") : " (there are " + names + ")"));
 }
 
-// Qt aborts when it cannot reach a display; say so first, with the fix.
-bool haveDisplay() {
-    const char* platform = std::getenv("QT_QPA_PLATFORM");
-    if (platform && std::string(platform).rfind("xcb", 0) != 0 && std::string(platform).rfind("wayland", 0) != 0)
-        return true;  // some other platform plugin: let Qt decide
-    return std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
+// PNG, JPEG... through the atomic write, the format from the extension as QImage::save(path) picks it.
+void saveImage(const QImage& image, const fs::path& file) {
+    const QByteArray format = QFileInfo(QString::fromStdString(file.string())).suffix().toLower().toLatin1();
+    ui::writeFileAtomically(file, [&](QIODevice& device) { return image.save(&device, format.constData()); });
 }
-
-// A Qt application and an offscreen OpenGL context, for as long as the command runs. Throws when
-// there is no display (Qt would abort) or no OpenGL 4.1 core context.
-class OffscreenSession {
-public:
-    OffscreenSession(const char* argv0, const std::string& command) {
-        if (!haveDisplay())
-            throw std::runtime_error(command + " needs an X display for OpenGL (DISPLAY is not set); run it as: "
-                                     "xvfb-run -a mipgloss " + command + " ...");
-        argv_[0] = const_cast<char*>(argv0);
-        ui::setDefaultSurfaceFormat();
-        app_ = std::make_unique<QGuiApplication>(argc_, argv_);
-        renderer_ = std::make_unique<ui::OffscreenRenderer>();
-        std::string error;
-        if (!renderer_->initialize(&error)) throw std::runtime_error(error);
-    }
-    ~OffscreenSession() { renderer_.reset(); }  // GL teardown while the application exists
-    ui::OffscreenRenderer& renderer() { return *renderer_; }
-
-private:
-    int argc_ = 1;
-    char* argv_[2] = {nullptr, nullptr};
-    std::unique_ptr<QGuiApplication> app_;
-    std::unique_ptr<ui::OffscreenRenderer> renderer_;
-};
 
 }  // namespace
 
@@ -130,7 +115,8 @@ int runRender(Args args, const char* argv0) {
     std::optional<fs::path> scenePath, envPath, outPath;
     std::vector<fs::path> meshPaths;
     std::optional<float> lambda, exposure, backgroundLambda, yaw, pitch;
-    std::optional<fs::path> aovPath;
+    std::optional<fs::path> aovPath, libraryPath;
+    std::optional<std::string> libraryMaterial;
     std::optional<LookupMode> mode;
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
@@ -143,18 +129,13 @@ int runRender(Args args, const char* argv0) {
         if (a == "--env") envPath = value();
         else if (a == "--mesh") meshPaths.emplace_back(value());
         else if (a == "--out") outPath = value();
-        else if (a == "--lambda") lambda = parseFloat(a, value(), 0.0f, static_cast<float>(kMaxLambda));
-        else if (a == "--exponent") {
-            const std::string v = value();
-            if (v == "mirror" || v == "inf") {
-                lambda = 0.0f;
-            } else {
-                const float n = parseFloat(a, v, 0.0f, 1e9f);
-                lambda = static_cast<float>(exponentToLambda(n));
-            }
-        } else if (a == "--aov") aovPath = value();
+        else if (a == "--lambda") lambda = parseLambda(a, value());
+        else if (a == "--exponent") lambda = parseExponentAsLambda(a, value());
+        else if (a == "--library") libraryPath = value();
+        else if (a == "--material") libraryMaterial = value();
+        else if (a == "--aov") aovPath = value();
         else if (a == "--exposure") exposure = parseFloat(a, value(), -20.0f, 20.0f);
-        else if (a == "--background-lambda") backgroundLambda = parseFloat(a, value(), 0.0f, static_cast<float>(kMaxLambda));
+        else if (a == "--background-lambda") backgroundLambda = parseLambda(a, value());
         else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
         else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
         else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
@@ -165,9 +146,7 @@ int runRender(Args args, const char* argv0) {
             if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "'");
             builder = b;
         } else if (a == "--mode") {
-            LookupMode m;
-            if (!parseLookupMode(value(), m)) throw UsageError("--mode is reflect or normal");
-            mode = m;
+            mode = parseMode(a, value());
         } else if (a == "--tonemap") {
             ToneMap t;
             if (!parseToneMap(value(), t)) throw UsageError("--tonemap is linear, reinhard or aces");
@@ -181,6 +160,11 @@ int runRender(Args args, const char* argv0) {
         else throw UsageError("more than one scene given");
     }
     if (!outPath) throw UsageError("render needs --out IMAGE");
+    if (libraryPath.has_value() != libraryMaterial.has_value())
+        throw UsageError("--library LIB.json and --material NAME go together");
+    // Read before the OpenGL session starts, so a bad library is reported at once.
+    const std::optional<LibraryMaterial> libraryMaterialEntry =
+        libraryPath ? std::optional(libraryEntry(*libraryPath, *libraryMaterial)) : std::nullopt;
     OffscreenSession session(argv0, "render");
     ui::OffscreenRenderer& renderer = session.renderer();
 
@@ -215,6 +199,13 @@ int runRender(Args args, const char* argv0) {
             object.mesh = std::move(mesh);
             scene.addObject(std::move(object), Material{});
         }
+    }
+    if (libraryMaterialEntry) {
+        // One material, shared by every object; the scene's own go.
+        scene.materials.clear();
+        const MaterialId id =
+            scene.addMaterial(libraryMaterialEntry->name, libraryMaterialEntry->material, libraryMaterialEntry->name);
+        for (SceneObject& object : scene.objects) object.material = id;
     }
     if (envPath) scene.environment.source = envPath->string();
     if (envSize) scene.environment.faceSize = *envSize;
@@ -265,8 +256,8 @@ int runRender(Args args, const char* argv0) {
                 rgb.insert(rgb.end(), {p.r, p.g, p.b});
             }
         writeFloatChannels(*outPath, w, h, {"R", "G", "B"}, rgb);
-    } else if (!image.save(QString::fromStdString(outPath->string()))) {
-        throw std::runtime_error(outPath->string() + ": cannot write the image");
+    } else {
+        saveImage(image, *outPath);
     }
     if (aovPath) {
         const ui::AovImage aov = renderer.renderAov(scene, camera, environment, width, height);

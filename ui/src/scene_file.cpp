@@ -2,6 +2,8 @@
 
 #include "mipgloss/ui/atomic_file.h"
 
+#include "material_json.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/phong.h"
 
@@ -11,14 +13,11 @@
 #include <QJsonObject>
 #include <QSaveFile>
 
-#include <glm/vector_relational.hpp>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -35,30 +34,8 @@ constexpr const char* kBuiltinSphere = "builtin:sphere";
 constexpr int kMinFaceSize = 4, kMaxFaceSize = 4096;
 constexpr int kMaxSamples = 16;
 constexpr double kMaxExposureEv = 20.0;
-// Version 1 clamped λ to [0, 16] (its old kMaxLambda), so it may hold anything in there.
-constexpr double kLegacyMaxLambda = 16.0;
-// "phongExponent" agrees with λ when within this relative difference (see scene_file.h).
-constexpr double kExponentTolerance = 1e-4;
 
 bool isBuiltin(const std::string& s) { return s.rfind(kBuiltinPrefix, 0) == 0; }
-
-std::string keyName(const std::string& where, const char* key) {
-    return where.empty() ? std::string(key) : where + "." + key;
-}
-
-template <class T>
-std::string show(T value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-// A JSON value as it appears in the file, for error messages: 3, "abc", null, [1,2], {...}.
-std::string jsonText(const QJsonValue& v) {
-    if (v.isObject()) return "an object";
-    const QByteArray text = QJsonDocument(QJsonArray{v}).toJson(QJsonDocument::Compact);
-    return text.mid(1, text.size() - 2).toStdString();  // without the array's brackets
-}
 
 fs::path absoluteNormal(const fs::path& p) {
     std::error_code ec;
@@ -66,99 +43,17 @@ fs::path absoluteNormal(const fs::path& p) {
     return (ec ? p : a).lexically_normal();
 }
 
-QJsonArray toArray(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
-
 // Reads one scene file's JSON, collecting warnings; every error names the file and the key.
-class Reader {
+class Reader : public JsonReader {
 public:
-    Reader(const fs::path& file, SceneFileReport* report) : file_(file), report_(report) {}
+    Reader(const fs::path& file, SceneFileReport* report)
+        : JsonReader(file, report ? &report->warnings : nullptr) {}
 
-    [[noreturn]] void fail(const std::string& reason) const { throw SceneFileError(file_, reason); }
+    [[noreturn]] void fail(const std::string& reason) const override { throw SceneFileError(file(), reason); }
 
     // How λ is read: version 1 files meant a mip level of their own face size (scene_file.h).
     void setLambdaMeaning(int version, int faceSize) {
-        legacyLambda_ = version <= kSceneVersionLegacyLambda;
-        legacyFaceSize_ = faceSize;
-    }
-
-    void warn(const std::string& text) const {
-        if (report_) report_->warnings.push_back(file_.string() + ": " + text);
-    }
-
-    QJsonObject object(const QJsonObject& parent, const char* key, const std::string& where,
-                       bool required) const {
-        const QJsonValue v = parent.value(QLatin1String(key));
-        if (v.isUndefined()) {
-            if (required) fail("missing \"" + where + "\"");
-            return {};
-        }
-        if (!v.isObject()) fail("\"" + where + "\" must be an object");
-        return v.toObject();
-    }
-
-    double number(const QJsonObject& o, const char* key, const std::string& where,
-                  double fallback) const {
-        const QJsonValue v = o.value(QLatin1String(key));
-        if (v.isUndefined()) return fallback;
-        return finite(v, keyName(where, key));
-    }
-
-    double finite(const QJsonValue& v, const std::string& where) const {
-        if (!v.isDouble()) fail("\"" + where + "\" must be a number");
-        const double d = v.toDouble();
-        if (!std::isfinite(d)) fail("\"" + where + "\" is not a finite number");
-        return d;
-    }
-
-    int integer(const QJsonObject& o, const char* key, const std::string& where,
-                int fallback) const {
-        const double d = number(o, key, where, fallback);
-        if (d != std::floor(d) || std::abs(d) > 1e9)
-            fail("\"" + keyName(where, key) + "\" must be a whole number");
-        return static_cast<int>(d);
-    }
-
-    bool boolean(const QJsonObject& o, const char* key, const std::string& where,
-                 bool fallback) const {
-        const QJsonValue v = o.value(QLatin1String(key));
-        if (v.isUndefined()) return fallback;
-        if (!v.isBool()) fail("\"" + keyName(where, key) + "\" must be true or false");
-        return v.toBool();
-    }
-
-    std::string string(const QJsonObject& o, const char* key, const std::string& where,
-                       const std::string* fallback) const {
-        const QJsonValue v = o.value(QLatin1String(key));
-        if (v.isUndefined()) {
-            if (!fallback) fail("missing \"" + keyName(where, key) + "\"");
-            return *fallback;
-        }
-        if (!v.isString()) fail("\"" + keyName(where, key) + "\" must be a string");
-        return v.toString().toStdString();
-    }
-
-    glm::vec3 vec3(const QJsonObject& o, const char* key, const std::string& where,
-                   glm::vec3 fallback) const {
-        const QJsonValue v = o.value(QLatin1String(key));
-        if (v.isUndefined()) return fallback;
-        const std::string name = keyName(where, key);
-        if (!v.isArray() || v.toArray().size() != 3)
-            fail("\"" + name + "\" must be an array of three numbers");
-        const QJsonArray a = v.toArray();
-        glm::vec3 out;
-        for (int i = 0; i < 3; ++i)
-            out[i] = static_cast<float>(finite(a.at(i), name + "[" + std::to_string(i) + "]"));
-        return out;
-    }
-
-    // Clamps to [lo, hi] with a warning that says what was read and what is used.
-    template <class T>
-    T clamped(T value, T lo, T hi, const std::string& where) const {
-        const T c = std::clamp(value, lo, hi);
-        if (c != value)
-            warn("\"" + where + "\" " + show(value) + " is outside [" + show(lo) + ", " + show(hi) +
-                 "]; using " + show(c));
-        return c;
+        setLegacyLambda(version <= kSceneVersionLegacyLambda, faceSize);
     }
 
     EnvironmentSettings environment(const QJsonObject& o) const {
@@ -172,7 +67,7 @@ public:
                 fail("unknown built-in environment \"" + source + "\" (there is " + builtin + ")");
             s.source = source;
         } else {
-            const fs::path resolved = resolvePathForScene(source, file_);
+            const fs::path resolved = resolvePathForScene(source, file());
             std::error_code ec;
             if (!fs::exists(resolved, ec))
                 fail("environment \"" + source + "\" not found (looked for " + resolved.string() + ")");
@@ -216,64 +111,6 @@ public:
         return d;
     }
 
-    Material material(const QJsonObject& o, const std::string& where) const {
-        Material m;
-        m.lambda = static_cast<float>(lambdaValue(o, "lambda", where));
-        if (!legacyLambda_) checkExponent(o, where, m.lambda);
-        const std::string reflect = lookupModeName(LookupMode::Reflect);
-        const std::string mode = string(o, "mode", where, &reflect);
-        if (!parseLookupMode(mode, m.mode)) fail("unknown \"" + where + ".mode\" \"" + mode + "\"");
-        m.useIrradiance = boolean(o, "useIrradiance", where, m.useIrradiance);
-        m.tint = vec3(o, "tint", where, m.tint);
-        if (glm::any(glm::lessThan(m.tint, glm::vec3(0.0f))))
-            fail("\"" + where + ".tint\" has a negative component");
-        m.sharperAtGrazing = boolean(o, "sharperAtGrazing", where, m.sharperAtGrazing);
-        return m;
-    }
-
-    // A λ (a material's or the background's) in today's meaning: an error unless the file holds a
-    // number in its version's range, converted from a version 1 file's face size (scene_file.h).
-    double lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const {
-        const QJsonValue v = o.value(QLatin1String(key));
-        if (v.isUndefined()) return 0.0;
-        const std::string name = keyName(where, key);
-        const double top = legacyLambda_ ? kLegacyMaxLambda : kMaxLambda;
-        const std::string range = "a blur λ must be a number in [0, " + show(top) + "]" +
-                                  (legacyLambda_ ? " in a version 1 file" : "");
-        if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + range);
-        const double stored = v.toDouble();
-        if (!(std::isfinite(stored) && stored >= 0.0 && stored <= top))
-            fail("\"" + name + "\" is " + show(stored) + ": " + range);
-        if (!legacyLambda_) return stored;
-        // λ 0 is the mirror under any face size: legacy n = ∞, and λ(∞) = 0.
-        return exponentToLambda(legacyLambdaToExponent(stored, legacyFaceSize_));
-    }
-
-    // "phongExponent" beside a version 2 material's λ: information, validated, checked for
-    // agreement with a warning (scene_file.h).
-    void checkExponent(const QJsonObject& o, const std::string& where, float lambda) const {
-        const QJsonValue v = o.value(QLatin1String("phongExponent"));
-        if (v.isUndefined()) return;
-        const std::string name = keyName(where, "phongExponent");
-        const std::string rule = "a Phong exponent must be a finite number >= 0, or null for the mirror";
-        double n = kMirrorExponent;
-        if (!v.isNull()) {
-            if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + rule);
-            n = v.toDouble();
-            if (!std::isfinite(n) || !isValidExponent(n))
-                fail("\"" + name + "\" is " + show(n) + ": " + rule);
-        }
-        const double expected = lambdaToExponent(static_cast<double>(lambda));
-        const bool agree =
-            std::isinf(n) ? std::isinf(expected)
-                          : std::isfinite(expected) &&
-                                std::abs(n - expected) <= kExponentTolerance * std::max(1.0, expected);
-        if (!agree)
-            warn("\"" + name + "\" " + jsonText(v) + " disagrees with \"" + keyName(where, "lambda") +
-                 "\" " + show(lambda) + " (n = " +
-                 (std::isinf(expected) ? std::string("mirror") : show(expected)) + "); using the λ");
-    }
-
     Transform transform(const QJsonObject& o, const std::string& where) const {
         Transform t;
         t.translation = vec3(o, "translation", where, t.translation);
@@ -300,7 +137,7 @@ public:
             }
             return cached;
         }
-        const fs::path resolved = resolvePathForScene(source, file_);
+        const fs::path resolved = resolvePathForScene(source, file());
         meshSource = resolved.string();
         auto& cached = cache_[meshSource];
         if (cached) return cached;
@@ -319,10 +156,6 @@ public:
     }
 
 private:
-    fs::path file_;
-    SceneFileReport* report_;
-    bool legacyLambda_ = false;
-    int legacyFaceSize_ = kLambdaReferenceSize;
     std::map<std::string, std::shared_ptr<const Mesh>> cache_;
 };
 
@@ -366,17 +199,8 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
     QJsonArray materials;
     for (const NamedMaterial& named : scene.materials) {
         if (scene.usersOf(named.id) == 0) continue;
-        const Material& m = named.material;
-        const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
-        QJsonObject material{
-            {"name", QString::fromStdString(named.name)},
-            {"lambda", m.lambda},
-            {"phongExponent", std::isinf(exponent) ? QJsonValue(QJsonValue::Null) : QJsonValue(exponent)},
-            {"mode", lookupModeName(m.mode)},
-            {"useIrradiance", m.useIrradiance},
-            {"tint", toArray(m.tint)},
-            {"sharperAtGrazing", m.sharperAtGrazing},
-        };
+        QJsonObject material = materialToJson(named.material);
+        material.insert("name", QString::fromStdString(named.name));
         if (!named.libraryEntry.empty()) material.insert("library", QString::fromStdString(named.libraryEntry));
         materials.append(material);
     }
@@ -384,8 +208,8 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
     for (const SceneObject& o : scene.objects) {
         const NamedMaterial* named = scene.findMaterial(o.material);
         QJsonObject transform{
-            {"translation", toArray(o.transform.translation)},
-            {"rotationDegrees", toArray(o.transform.rotationDegrees)},
+            {"translation", vec3ToJson(o.transform.translation)},
+            {"rotationDegrees", vec3ToJson(o.transform.rotationDegrees)},
             {"scale", o.transform.scale},
         };
         QJsonObject object{
@@ -407,20 +231,8 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
 Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFileReport* report) {
     SceneFileReport local;
     Reader reader(sceneFile, &local);
-    QJsonParseError parseError;
-    const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
-    if (parseError.error != QJsonParseError::NoError)
-        reader.fail("not valid JSON at byte " + std::to_string(parseError.offset) + ": " +
-                    parseError.errorString().toStdString());
-    if (!doc.isObject()) reader.fail("not a scene: the top level is not a JSON object");
-    const QJsonObject root = doc.object();
-    if (root.value("format").toString() != QLatin1String(kSceneFormat))
-        reader.fail(std::string("not a scene: \"format\" is not \"") + kSceneFormat + "\"");
-    const int version = reader.integer(root, "version", "", -1);
-    if (version < 1) reader.fail("missing or invalid \"version\"");
-    if (version > kSceneVersion)
-        reader.fail("scene version " + std::to_string(version) + " is newer than this program reads (" +
-                    std::to_string(kSceneVersion) + ")");
+    int version = 0;
+    const QJsonObject root = reader.document(json, kSceneFormat, "scene", kSceneVersion, version);
 
     Scene scene;
     scene.environment = reader.environment(reader.object(root, "environment", "environment", false));

@@ -22,6 +22,8 @@
 #include <QByteArray>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace mipgloss::ui {
 
@@ -33,13 +35,22 @@ public:
     using FileError::FileError;
 };
 
+// What a library file held that was read anyway: a "phongExponent" that disagrees with its λ
+// (the λ is used, as in scene files). One line each, naming the file.
+struct LibraryFileReport {
+    std::vector<std::string> warnings;
+};
+
 QByteArray libraryToJson(const MaterialLibrary& library);
 // `file` names the file in errors. Throws LibraryFileError.
-MaterialLibrary libraryFromJson(const QByteArray& json, const std::filesystem::path& file);
+MaterialLibrary libraryFromJson(const QByteArray& json, const std::filesystem::path& file,
+                                LibraryFileReport* report = nullptr);
 
 // Throws LibraryFileError (including "no such file").
-MaterialLibrary loadLibrary(const std::filesystem::path& file);
-// Atomic; creates the folder if missing. Throws LibraryFileError.
+MaterialLibrary loadLibrary(const std::filesystem::path& file, LibraryFileReport* report = nullptr);
+// Atomic; creates the folder if missing. Refuses (LibraryFileError, the file untouched) a library
+// that would not load again: an invalid or repeated name, an absurd λ or tint. Throws
+// LibraryFileError.
 void saveLibrary(const MaterialLibrary& library, const std::filesystem::path& file);
 
 // The user's library: library.json in QStandardPaths::AppDataLocation (needs the application's

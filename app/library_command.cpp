@@ -1,0 +1,254 @@
+#include "library_command.h"
+
+#include "material_args.h"
+#include "offscreen_session.h"
+
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/library.h"
+#include "mipgloss/ui/atomic_file.h"
+#include "mipgloss/ui/library_file.h"
+#include "mipgloss/ui/thumbnail.h"
+
+#include <QIODevice>
+#include <QImage>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace mipgloss::app {
+
+const char* const kLibraryUsage = R"(
+  mipgloss library list LIB.json [--json]
+  mipgloss library add LIB.json --name NAME [--lambda L | --exponent N] [--mode reflect|normal]
+                       [--tint R,G,B] [--irradiance] [--grazing]
+  mipgloss library remove LIB.json NAME
+  mipgloss library rename LIB.json OLD NEW
+  mipgloss library thumbnails LIB.json [--env FILE] [--size PX] [--env-size N] --out DIR
+
+library: the material library files mipgloss-gui keeps (format "mipgloss-library", docs/library.md).
+  Every change is written atomically (the file is the old one or the new one, whatever happens),
+  and a file that cannot be read (corrupt, a newer version, not a library) is refused, named,
+  and left as it is.
+  list           one material a line, tab-separated: name, lambda, Phong exponent n (mirror for
+                 lambda 0), mode, tint (linear R,G,B), then "irradiance" and "sharper-at-grazing"
+                 when set; --json prints the library as JSON instead
+  add            adds material NAME (a missing LIB.json is created; a name already there is an
+                 error); --lambda L (0 = mirror .. 8, default 0) or --exponent N (Phong, >= 0,
+                 "mirror"), --mode (default reflect; normal with a high lambda is the paper's
+                 diffuse), --tint (default 1,1,1), --irradiance (normal mode: the irradiance map
+                 instead of the chain), --grazing (sharper toward grazing angles)
+  remove         removes material NAME
+  rename         renames material OLD to NEW (NEW must be free)
+  thumbnails     one PNG per material in DIR (created if missing), PX x PX pixels (default
+                 256): a sphere wearing it in front of the environment (--env FILE as for bake,
+                 default the embedded one; --env-size N its base face size, default 128), named
+                 after the material made file-name safe (DIR/<name>.png); needs an X display
+)";
+
+namespace {
+
+// One library subcommand's LIB.json, and the rule that a library that cannot be read is never
+// written: `load` throws, so nothing after it runs.
+MaterialLibrary load(const fs::path& file) {
+    ui::LibraryFileReport report;
+    MaterialLibrary library = ui::loadLibrary(file, &report);
+    for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    return library;
+}
+
+ui::LibraryFileError nameTaken(const fs::path& file, const std::string& name) {
+    return ui::LibraryFileError(file, "a material named \"" + name + "\" is already in the library");
+}
+
+ui::LibraryFileError noSuchName(const fs::path& file, const std::string& name) {
+    return ui::LibraryFileError(file, "no material named \"" + name + "\"");
+}
+
+std::string exponentText(float lambda) {
+    const double n = lambdaToExponent(static_cast<double>(lambda));
+    if (std::isinf(n)) return "mirror";
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, n >= 100.0 ? "%.0f" : "%.3g", n);
+    return buffer;
+}
+
+std::string numberText(float value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+std::string describe(const Material& m) {
+    return "lambda " + numberText(m.lambda) + ", n " + exponentText(m.lambda) + ", " + lookupModeName(m.mode);
+}
+
+std::string requireName(const std::string& flag, const std::string& name) {
+    if (const std::string problem = materialNameProblem(name); !problem.empty())
+        throw UsageError(flag + " '" + name + "': " + problem);
+    return name;
+}
+
+// The one positional argument every subcommand starts with.
+fs::path libraryArgument(Args& args, const std::string& command) {
+    if (args.empty()) throw UsageError("library " + command + " needs LIB.json");
+    const std::string file = args.next();
+    if (!file.empty() && file[0] == '-')
+        throw UsageError("library " + command + " needs LIB.json first, got '" + file + "'");
+    return file;
+}
+
+int list(Args args) {
+    const fs::path file = libraryArgument(args, "list");
+    bool json = false;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        if (a == "--json") json = true;
+        else throw UsageError("library list: unknown argument '" + a + "'");
+    }
+    const MaterialLibrary library = load(file);
+    if (json) {
+        std::cout << ui::libraryToJson(library).toStdString();
+        return 0;
+    }
+    for (const LibraryMaterial& entry : library.entries) {
+        const Material& m = entry.material;
+        std::cout << entry.name << '\t' << "lambda " << numberText(m.lambda) << '\t' << "n " << exponentText(m.lambda)
+                  << '\t' << lookupModeName(m.mode) << '\t' << "tint " << numberText(m.tint.r) << ','
+                  << numberText(m.tint.g) << ',' << numberText(m.tint.b) << (m.useIrradiance ? "\tirradiance" : "")
+                  << (m.sharperAtGrazing ? "\tsharper-at-grazing" : "") << '\n';
+    }
+    return 0;
+}
+
+int add(Args args) {
+    const fs::path file = libraryArgument(args, "add");
+    std::optional<std::string> name;
+    std::optional<std::string> lambdaFlag;  // which of --lambda and --exponent set it
+    Material material;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        auto value = [&] { return args.value(a); };
+        if (a == "--name") name = requireName(a, value());
+        else if (a == "--lambda" || a == "--exponent") {
+            if (lambdaFlag) throw UsageError(a + ": λ is already set by " + *lambdaFlag + "; give --lambda or --exponent once");
+            lambdaFlag = a;
+            material.lambda = a == "--lambda" ? parseLambda(a, value()) : parseExponentAsLambda(a, value());
+        } else if (a == "--mode") material.mode = parseMode(a, value());
+        else if (a == "--tint") material.tint = parseTint(a, value());
+        else if (a == "--irradiance") material.useIrradiance = true;
+        else if (a == "--grazing") material.sharperAtGrazing = true;
+        else throw UsageError("library add: unknown argument '" + a + "'");
+    }
+    if (!name) throw UsageError("library add needs --name NAME");
+    if (material.useIrradiance && material.mode != LookupMode::Normal)
+        std::cerr << "mipgloss: warning: --irradiance shows only with --mode normal\n";
+    // A library that does not exist yet starts empty; one that exists and cannot be read is refused.
+    std::error_code ec;
+    const bool exists = fs::exists(file, ec);
+    if (ec) throw ui::LibraryFileError(file, "cannot read: " + ec.message());
+    MaterialLibrary library = exists ? load(file) : MaterialLibrary{};
+    if (library.contains(*name)) throw nameTaken(file, *name);
+    library.entries.push_back({*name, material});
+    ui::saveLibrary(library, file);
+    std::cout << "added \"" << *name << "\" (" << describe(material) << ") to " << file.string() << '\n';
+    return 0;
+}
+
+int remove(Args args) {
+    const fs::path file = libraryArgument(args, "remove");
+    if (args.empty()) throw UsageError("library remove needs NAME");
+    const std::string name = args.next();
+    if (!args.empty()) throw UsageError("library remove takes one NAME");
+    MaterialLibrary library = load(file);
+    const int index = library.indexOf(name);
+    if (index < 0) throw noSuchName(file, name);
+    library.entries.erase(library.entries.begin() + index);
+    ui::saveLibrary(library, file);
+    std::cout << "removed \"" << name << "\" from " << file.string() << '\n';
+    return 0;
+}
+
+int rename(Args args) {
+    const fs::path file = libraryArgument(args, "rename");
+    if (args.empty()) throw UsageError("library rename needs OLD and NEW");
+    const std::string from = args.next();
+    if (args.empty()) throw UsageError("library rename needs NEW");
+    const std::string to = requireName("NEW", args.next());
+    if (!args.empty()) throw UsageError("library rename takes OLD and NEW only");
+    MaterialLibrary library = load(file);
+    LibraryMaterial* entry = library.find(from);
+    if (!entry) throw noSuchName(file, from);
+    if (from == to) {
+        std::cout << "\"" << from << "\" keeps its name; " << file.string() << " is unchanged\n";
+        return 0;
+    }
+    if (library.contains(to)) throw nameTaken(file, to);
+    entry->name = to;
+    ui::saveLibrary(library, file);
+    std::cout << "renamed \"" << from << "\" to \"" << to << "\" in " << file.string() << '\n';
+    return 0;
+}
+
+int thumbnails(Args args, const char* argv0) {
+    const fs::path file = libraryArgument(args, "thumbnails");
+    std::optional<fs::path> outDir;
+    EnvironmentSettings settings;
+    int size = 256;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        auto value = [&] { return args.value(a); };
+        if (a == "--out") outDir = value();
+        else if (a == "--env") settings.source = value();
+        else if (a == "--size") size = static_cast<int>(parseFloat(a, value(), 16.0f, 4096.0f));
+        else if (a == "--env-size") settings.faceSize = static_cast<int>(parseFloat(a, value(), 16.0f, 4096.0f));
+        else throw UsageError("library thumbnails: unknown argument '" + a + "'");
+    }
+    if (!outDir) throw UsageError("library thumbnails needs --out DIR");
+    const MaterialLibrary library = load(file);
+    if (library.entries.empty()) {
+        std::cout << file.string() << " has no materials; no thumbnails written\n";
+        return 0;
+    }
+    OffscreenSession session(argv0, "library thumbnails");
+    // One prepared environment serves every material (thumbnailNeeds).
+    const auto environment = std::make_shared<const PreparedEnvironment>(
+        prepareEnvironment(settings, ui::thumbnailNeeds(settings.faceSize)));
+    for (const std::string& w : environment->report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    const std::vector<std::string> names = thumbnailFileNames(library);
+    for (std::size_t i = 0; i < library.entries.size(); ++i) {
+        const LibraryMaterial& entry = library.entries[i];
+        const QImage image = ui::renderThumbnail(session.renderer(), entry.material, environment, size);
+        const fs::path png = *outDir / (names[i] + ".png");
+        if (image.isNull()) throw std::runtime_error(png.string() + ": the render failed");
+        ui::writeFileAtomically(png, [&](QIODevice& device) { return image.save(&device, "PNG"); });
+        std::cout << png.string() << '\t' << entry.name << '\n';
+    }
+    return 0;
+}
+
+}  // namespace
+
+int runLibrary(Args args, const char* argv0) {
+    if (args.empty()) throw UsageError("library needs a subcommand: list, add, remove, rename or thumbnails");
+    const std::string command = args.next();
+    if (command == "list") return list(std::move(args));
+    if (command == "add") return add(std::move(args));
+    if (command == "remove") return remove(std::move(args));
+    if (command == "rename") return rename(std::move(args));
+    if (command == "thumbnails") return thumbnails(std::move(args), argv0);
+    if (command == "--help" || command == "-h") {
+        std::cout << kLibraryUsage;
+        return 0;
+    }
+    throw UsageError("unknown library subcommand '" + command + "' (list, add, remove, rename, thumbnails)");
+}
+
+}  // namespace mipgloss::app

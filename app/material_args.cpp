@@ -1,0 +1,53 @@
+#include "material_args.h"
+
+#include "mipgloss/ibl/phong.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+namespace mipgloss::app {
+
+float parseFloat(const std::string& flag, const std::string& value, float lo, float hi) {
+    char* end = nullptr;
+    const float v = std::strtof(value.c_str(), &end);
+    if (end == value.c_str() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
+        throw UsageError(flag + " needs a number from " + std::to_string(lo) + " to " +
+                         std::to_string(hi) + ", got '" + value + "'");
+    return v;
+}
+
+float parseLambda(const std::string& flag, const std::string& value) {
+    return parseFloat(flag, value, 0.0f, static_cast<float>(kMaxLambda));
+}
+
+float parseExponentAsLambda(const std::string& flag, const std::string& value) {
+    if (value == "mirror" || value == "inf") return 0.0f;
+    const float n = parseFloat(flag, value, 0.0f, 1e9f);
+    return static_cast<float>(exponentToLambda(n));
+}
+
+LookupMode parseMode(const std::string& flag, const std::string& value) {
+    LookupMode mode;
+    if (!parseLookupMode(value, mode)) throw UsageError(flag + " is reflect or normal, got '" + value + "'");
+    return mode;
+}
+
+Rgb parseTint(const std::string& flag, const std::string& value) {
+    const std::string rule =
+        flag + " needs three numbers >= 0 separated by commas (linear RGB, e.g. 1,0.8,0.3), got '" + value + "'";
+    std::vector<float> parts;
+    std::stringstream in(value);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        const float v = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0f) throw UsageError(rule);
+        parts.push_back(v);
+    }
+    if (parts.size() != 3 || value.back() == ',') throw UsageError(rule);
+    return Rgb(parts[0], parts[1], parts[2]);
+}
+
+}  // namespace mipgloss::app

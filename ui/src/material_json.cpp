@@ -1,0 +1,182 @@
+#include "material_json.h"
+
+#include <QJsonDocument>
+
+#include <glm/vector_relational.hpp>
+
+#include <cmath>
+
+namespace mipgloss::ui {
+
+namespace {
+
+// Version 1 scene files clamped λ to [0, 16] (its old kMaxLambda), so they may hold anything in there.
+constexpr double kLegacyMaxLambda = 16.0;
+// "phongExponent" agrees with λ when within this relative difference (see scene_file.h).
+constexpr double kExponentTolerance = 1e-4;
+
+}  // namespace
+
+std::string keyName(const std::string& where, const char* key) {
+    return where.empty() ? std::string(key) : where + "." + key;
+}
+
+std::string jsonText(const QJsonValue& v) {
+    if (v.isObject()) return "an object";
+    const QByteArray text = QJsonDocument(QJsonArray{v}).toJson(QJsonDocument::Compact);
+    return text.mid(1, text.size() - 2).toStdString();  // without the array's brackets
+}
+
+QJsonArray vec3ToJson(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
+
+QJsonObject materialToJson(const Material& m) {
+    const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
+    return QJsonObject{
+        {"lambda", m.lambda},
+        {"phongExponent", std::isinf(exponent) ? QJsonValue(QJsonValue::Null) : QJsonValue(exponent)},
+        {"mode", lookupModeName(m.mode)},
+        {"useIrradiance", m.useIrradiance},
+        {"tint", vec3ToJson(m.tint)},
+        {"sharperAtGrazing", m.sharperAtGrazing},
+    };
+}
+
+void JsonReader::warn(const std::string& text) const {
+    if (warnings_) warnings_->push_back(file_.string() + ": " + text);
+}
+
+QJsonObject JsonReader::document(const QByteArray& json, const char* format, const std::string& noun,
+                                 int newestVersion, int& version) const {
+    QJsonParseError parseError;
+    const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
+    if (parseError.error != QJsonParseError::NoError)
+        fail("not valid JSON at byte " + std::to_string(parseError.offset) + ": " +
+             parseError.errorString().toStdString());
+    if (!doc.isObject()) fail("not a " + noun + ": the top level is not a JSON object");
+    const QJsonObject root = doc.object();
+    const QJsonValue formatValue = root.value("format");
+    if (formatValue.toString() != QLatin1String(format))
+        fail("not a " + noun + ": " +
+             (formatValue.isUndefined() ? std::string("it has no \"format\"")
+                                        : "\"format\" is " + jsonText(formatValue) + ", not \"" + format + "\""));
+    version = integer(root, "version", "", -1);
+    if (version < 1) fail("missing or invalid \"version\"");
+    if (version > newestVersion)
+        fail(noun + " version " + std::to_string(version) + " is newer than this program reads (" +
+             std::to_string(newestVersion) + ")");
+    return root;
+}
+
+QJsonObject JsonReader::object(const QJsonObject& parent, const char* key, const std::string& where,
+                               bool required) const {
+    const QJsonValue v = parent.value(QLatin1String(key));
+    if (v.isUndefined()) {
+        if (required) fail("missing \"" + where + "\"");
+        return {};
+    }
+    if (!v.isObject()) fail("\"" + where + "\" must be an object");
+    return v.toObject();
+}
+
+double JsonReader::number(const QJsonObject& o, const char* key, const std::string& where,
+                          double fallback) const {
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) return fallback;
+    return finite(v, keyName(where, key));
+}
+
+double JsonReader::finite(const QJsonValue& v, const std::string& where) const {
+    if (!v.isDouble()) fail("\"" + where + "\" must be a number");
+    const double d = v.toDouble();
+    if (!std::isfinite(d)) fail("\"" + where + "\" is not a finite number");
+    return d;
+}
+
+int JsonReader::integer(const QJsonObject& o, const char* key, const std::string& where, int fallback) const {
+    const double d = number(o, key, where, fallback);
+    if (d != std::floor(d) || std::abs(d) > 1e9) fail("\"" + keyName(where, key) + "\" must be a whole number");
+    return static_cast<int>(d);
+}
+
+bool JsonReader::boolean(const QJsonObject& o, const char* key, const std::string& where, bool fallback) const {
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) return fallback;
+    if (!v.isBool()) fail("\"" + keyName(where, key) + "\" must be true or false");
+    return v.toBool();
+}
+
+std::string JsonReader::string(const QJsonObject& o, const char* key, const std::string& where,
+                               const std::string* fallback) const {
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) {
+        if (!fallback) fail("missing \"" + keyName(where, key) + "\"");
+        return *fallback;
+    }
+    if (!v.isString()) fail("\"" + keyName(where, key) + "\" must be a string");
+    return v.toString().toStdString();
+}
+
+glm::vec3 JsonReader::vec3(const QJsonObject& o, const char* key, const std::string& where,
+                           glm::vec3 fallback) const {
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) return fallback;
+    const std::string name = keyName(where, key);
+    if (!v.isArray() || v.toArray().size() != 3) fail("\"" + name + "\" must be an array of three numbers");
+    const QJsonArray a = v.toArray();
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(finite(a.at(i), name + "[" + std::to_string(i) + "]"));
+    return out;
+}
+
+Material JsonReader::material(const QJsonObject& o, const std::string& where) const {
+    Material m;
+    m.lambda = static_cast<float>(lambdaValue(o, "lambda", where));
+    if (!legacyLambda_) checkExponent(o, where, m.lambda);
+    const std::string reflect = lookupModeName(LookupMode::Reflect);
+    const std::string mode = string(o, "mode", where, &reflect);
+    if (!parseLookupMode(mode, m.mode)) fail("unknown \"" + where + ".mode\" \"" + mode + "\"");
+    m.useIrradiance = boolean(o, "useIrradiance", where, m.useIrradiance);
+    m.tint = vec3(o, "tint", where, m.tint);
+    if (glm::any(glm::lessThan(m.tint, glm::vec3(0.0f)))) fail("\"" + where + ".tint\" has a negative component");
+    m.sharperAtGrazing = boolean(o, "sharperAtGrazing", where, m.sharperAtGrazing);
+    return m;
+}
+
+double JsonReader::lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const {
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) return 0.0;
+    const std::string name = keyName(where, key);
+    const double top = legacyLambda_ ? kLegacyMaxLambda : kMaxLambda;
+    const std::string range = "a blur λ must be a number in [0, " + show(top) + "]" +
+                              (legacyLambda_ ? " in a version 1 file" : "");
+    if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + range);
+    const double stored = v.toDouble();
+    if (!(std::isfinite(stored) && stored >= 0.0 && stored <= top))
+        fail("\"" + name + "\" is " + show(stored) + ": " + range);
+    if (!legacyLambda_) return stored;
+    // λ 0 is the mirror under any face size: legacy n = ∞, and λ(∞) = 0.
+    return exponentToLambda(legacyLambdaToExponent(stored, legacyFaceSize_));
+}
+
+void JsonReader::checkExponent(const QJsonObject& o, const std::string& where, float lambda) const {
+    const QJsonValue v = o.value(QLatin1String("phongExponent"));
+    if (v.isUndefined()) return;
+    const std::string name = keyName(where, "phongExponent");
+    const std::string rule = "a Phong exponent must be a finite number >= 0, or null for the mirror";
+    double n = kMirrorExponent;
+    if (!v.isNull()) {
+        if (!v.isDouble()) fail("\"" + name + "\" is " + jsonText(v) + ": " + rule);
+        n = v.toDouble();
+        if (!std::isfinite(n) || !isValidExponent(n)) fail("\"" + name + "\" is " + show(n) + ": " + rule);
+    }
+    const double expected = lambdaToExponent(static_cast<double>(lambda));
+    const bool agree = std::isinf(n) ? std::isinf(expected)
+                                     : std::isfinite(expected) &&
+                                           std::abs(n - expected) <= kExponentTolerance * std::max(1.0, expected);
+    if (!agree)
+        warn("\"" + name + "\" " + jsonText(v) + " disagrees with \"" + keyName(where, "lambda") + "\" " +
+             show(lambda) + " (n = " + (std::isinf(expected) ? std::string("mirror") : show(expected)) +
+             "); using the λ");
+}
+
+}  // namespace mipgloss::ui
