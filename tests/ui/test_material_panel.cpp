@@ -1,5 +1,6 @@
 // MaterialPanel without OpenGL: λ, slider and Phong exponent kept in step through real key input,
-// one λ range and one λ <-> n mapping whatever the environment's face size, enabling rules, and the
+// one λ range and one λ <-> n mapping whatever the environment's face size, enabling rules, a
+// slider drag as one undo step, renaming, assigning and splitting shared materials, and the
 // sRGB <-> linear conversion.
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/material_panel.h"
@@ -13,11 +14,16 @@
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QSlider>
+#include <QStyle>
+#include <QStyleOptionSlider>
 #include <QTest>
+#include <QUndoStack>
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
@@ -261,4 +267,166 @@ TEST(ColourConversion, SwatchRoundTripsThroughLinear) {
     }
     // Linear mid-grey 0.5 is sRGB 188, not 128.
     EXPECT_EQ(colorFromLinear(Rgb(0.5f)).red(), 188);
+}
+
+namespace {
+
+// The centre of a slider's handle, where a user grabs it.
+QPoint handleCentre(QSlider* slider) {
+    QStyleOptionSlider opt;
+    opt.initFrom(slider);
+    opt.orientation = slider->orientation();
+    opt.minimum = slider->minimum();
+    opt.maximum = slider->maximum();
+    opt.tickPosition = slider->tickPosition();
+    opt.tickInterval = slider->tickInterval();
+    opt.singleStep = slider->singleStep();
+    opt.pageStep = slider->pageStep();
+    opt.sliderPosition = slider->sliderPosition();
+    opt.sliderValue = slider->value();
+    opt.upsideDown = slider->invertedAppearance();
+    return slider->style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, slider).center();
+}
+
+// A drag of the handle by `dx` pixels in `steps` mouse moves.
+void drag(QSlider* slider, int dx, int steps) {
+    const QPoint start = handleCentre(slider);
+    QTest::mousePress(slider, Qt::LeftButton, {}, start);
+    for (int i = 1; i <= steps; ++i) QTest::mouseMove(slider, start + QPoint(dx * i / steps, 0));
+    QTest::mouseRelease(slider, Qt::LeftButton, {}, start + QPoint(dx, 0));
+}
+
+void typeIntoLine(QLineEdit* edit, const QString& text) {
+    edit->setFocus();
+    edit->selectAll();
+    QTest::keyClicks(edit, text);
+    QTest::keyClick(edit, Qt::Key_Return);
+}
+
+}  // namespace
+
+TEST(MaterialPanel, SliderDragIsOneUndoStep) {
+    ShownPanel shown(0);
+    ASSERT_TRUE(shown.exposed());
+    SceneDocument& doc = shown.doc;
+    auto* slider = child<QSlider>(shown.panel, "lambdaSlider");
+    ASSERT_NE(slider, nullptr);
+    ASSERT_EQ(doc.undoStack()->count(), 0);
+    const float start = doc.materialOf(0).lambda;
+
+    std::vector<float> seen;
+    QObject::connect(&doc, &SceneDocument::materialChanged, &doc,
+                     [&](int index) { if (index == 0) seen.push_back(doc.materialOf(0).lambda); });
+    drag(slider, slider->width() / 4, 12);
+    ASSERT_GE(seen.size(), 3u) << "the drag must pass through several values";
+    const float dragged = doc.materialOf(0).lambda;
+    EXPECT_GT(dragged, start + 0.5f);
+    EXPECT_EQ(doc.undoStack()->count(), 1) << seen.size() << " values, one step";
+    EXPECT_EQ(doc.undoStack()->undoText(), QStringLiteral("Change λ of left"));
+
+    // A second drag is a second step.
+    drag(slider, -slider->width() / 8, 6);
+    EXPECT_LT(doc.materialOf(0).lambda, dragged);
+    EXPECT_EQ(doc.undoStack()->count(), 2);
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.materialOf(0).lambda, dragged);
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.materialOf(0).lambda, start);
+    EXPECT_EQ(slider->value(), static_cast<int>(std::lround(start * MaterialPanel::kSliderStepsPerLambda)));
+}
+
+TEST(MaterialPanel, RenamesAssignsAndMakesMaterialsUnique) {
+    ShownPanel shown(0);
+    ASSERT_TRUE(shown.exposed());
+    SceneDocument& doc = shown.doc;
+    MaterialPanel& panel = shown.panel;
+    auto* combo = child<QComboBox>(panel, "materialCombo");
+    auto* name = child<QLineEdit>(panel, "materialNameEdit");
+    auto* users = child<QLabel>(panel, "usersLabel");
+    auto* unique = child<QPushButton>(panel, "makeUniqueButton");
+    ASSERT_TRUE(combo && name && users && unique);
+    EXPECT_EQ(combo->count(), 2);
+    EXPECT_EQ(combo->currentText(), QStringLiteral("left"));
+    EXPECT_EQ(name->text(), QStringLiteral("left"));
+    EXPECT_FALSE(users->isVisible()) << "not shared";
+    EXPECT_FALSE(unique->isEnabled());
+
+    // Both objects on one material: the panel says so.
+    doc.assignMaterial(1, doc.object(0).material);
+    EXPECT_TRUE(users->isVisible());
+    EXPECT_EQ(users->text(), QStringLiteral("used by 2 objects"));
+    EXPECT_TRUE(unique->isEnabled());
+
+    // Rename: both objects' material is renamed; a name another material has is refused.
+    typeIntoLine(name, QStringLiteral("Gold"));
+    EXPECT_EQ(doc.namedMaterialOf(0)->name, "Gold");
+    EXPECT_EQ(doc.namedMaterialOf(1)->name, "Gold");
+    EXPECT_EQ(combo->currentText(), QStringLiteral("Gold"));
+    typeIntoLine(name, QStringLiteral("right"));
+    EXPECT_EQ(doc.namedMaterialOf(0)->name, "Gold");
+    EXPECT_EQ(name->text(), QStringLiteral("Gold"));
+
+    // Assign: choosing "right" in the combo gives object 0 that material.
+    const MaterialId gold = doc.object(0).material;
+    const int rightItem = combo->findText(QStringLiteral("right"));
+    ASSERT_GE(rightItem, 0);
+    QTest::keyClick(combo, rightItem > combo->currentIndex() ? Qt::Key_Down : Qt::Key_Up);
+    ASSERT_EQ(combo->currentIndex(), rightItem);
+    EXPECT_EQ(doc.namedMaterialOf(0)->name, "right");
+    EXPECT_EQ(doc.object(1).material, gold);
+    EXPECT_FALSE(users->isVisible());
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.object(0).material, gold);
+    EXPECT_EQ(combo->currentText(), QStringLiteral("Gold"));
+
+    // Make unique: object 0 gets "Gold 2", the same parameters, and editing it leaves object 1.
+    QTest::mouseClick(unique, Qt::LeftButton);
+    const NamedMaterial* own = doc.namedMaterialOf(0);
+    ASSERT_NE(own, nullptr);
+    EXPECT_EQ(own->name, "Gold 2");
+    EXPECT_NE(own->id, gold);
+    EXPECT_EQ(own->material, doc.materialOf(1));
+    EXPECT_EQ(doc.object(1).material, gold);
+    EXPECT_FALSE(users->isVisible());
+    EXPECT_EQ(combo->count(), 3);
+    auto* spin = child<QDoubleSpinBox>(panel, "lambdaSpin");
+    typeInto(spin, QStringLiteral("6"));
+    EXPECT_FLOAT_EQ(doc.materialOf(0).lambda, 6.0f);
+    EXPECT_FLOAT_EQ(doc.materialOf(1).lambda, 2.0f);
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.object(0).material, gold);
+    EXPECT_EQ(combo->count(), 2);
+    EXPECT_TRUE(users->isVisible());
+}
+
+// Steps made in one spin box while it keeps the focus are one undo step; the next box, or the same
+// box visited again, starts another.
+TEST(MaterialPanel, StepsInOneBoxWhileFocusedAreOneUndoStep) {
+    ShownPanel shown(1);
+    ASSERT_TRUE(shown.exposed());
+    shown.panel.activateWindow();
+    if (!QTest::qWaitForWindowActive(&shown.panel)) GTEST_SKIP() << "the panel cannot be activated here";
+    SceneDocument& doc = shown.doc;
+    auto* x = child<QDoubleSpinBox>(shown.panel, "translateX");
+    auto* y = child<QDoubleSpinBox>(shown.panel, "translateY");
+    ASSERT_TRUE(x && y);
+    const Transform start = doc.object(1).transform;
+    typeInto(x, QStringLiteral("1"));
+    QTest::keyClick(x, Qt::Key_Up);
+    QTest::keyClick(x, Qt::Key_Up);
+    typeInto(x, QStringLiteral("4"));
+    EXPECT_FLOAT_EQ(doc.object(1).transform.translation.x, 4.0f);
+    EXPECT_EQ(doc.undoStack()->count(), 1);
+    typeInto(y, QStringLiteral("2"));  // another box: another step
+    EXPECT_EQ(doc.undoStack()->count(), 2);
+    typeInto(x, QStringLiteral("5"));  // back to the first: a new visit, a new step
+    EXPECT_EQ(doc.undoStack()->count(), 3);
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    EXPECT_FLOAT_EQ(doc.object(1).transform.translation.x, 4.0f);
+    EXPECT_EQ(doc.object(1).transform.translation.y, start.translation.y);
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.object(1).transform, start);
+    EXPECT_DOUBLE_EQ(x->value(), static_cast<double>(start.translation.x));
 }

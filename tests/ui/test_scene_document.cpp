@@ -1,13 +1,20 @@
 // SceneDocument (signals only on change, selection bookkeeping, duplicates sharing meshes) and
-// SceneListModel (QAbstractItemModelTester, visibility and names through the model).
+// SceneListModel (QAbstractItemModelTester, rows moved rather than reset, visibility, names and
+// materials through the model, library materials dropped onto rows).
+#include "mipgloss/ui/material_mime.h"
 #include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_list_model.h"
+
+#include "scene_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <QAbstractItemModelTester>
+#include <QItemSelectionModel>
 #include <QLocale>
+#include <QMimeData>
 #include <QSignalSpy>
+#include <QUndoStack>
 
 #include <cmath>
 #include <limits>
@@ -17,23 +24,10 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::sphereMesh;
+using mipgloss::test::sphereObject;
 
 namespace {
-
-// A small scene without file I/O: spheres of radius 1 (world radius = scale).
-std::shared_ptr<const Mesh> sphereMesh() {
-    static const auto mesh = std::make_shared<const Mesh>(makeSphere(8, 16));
-    return mesh;
-}
-
-SceneObject sphereObject(const std::string& name, float x) {
-    SceneObject o;
-    o.name = name;
-    o.mesh = sphereMesh();
-    o.meshSource = "builtin:sphere";
-    o.transform.translation = {x, 0.0f, 0.0f};
-    return o;
-}
 
 // Collects what QAbstractItemModelTester reports (it warns in the "qt.modeltest" category) while
 // alive, so a broken model fails the test instead of only printing.
@@ -368,4 +362,105 @@ TEST(SceneListModel, TooltipNamesLambdaModeAndTriangles) {
     EXPECT_TRUE(tip.contains(QStringLiteral("normal"))) << tip.toStdString();
     const QString triangles = QLocale().toString(static_cast<qlonglong>(sphereMesh()->triangleCount()));
     EXPECT_TRUE(tip.contains(triangles)) << tip.toStdString();
+}
+
+// Adds, duplicates, removes and their undo and redo move single rows: the model never resets
+// (only resetScene does), the tester finds nothing wrong, and a selection stays on its object
+// while rows come and go above it.
+TEST(SceneListModel, MovesRowsWithoutResettingThroughEditsAndUndo) {
+    ModelTestWarnings warnings;
+    ModelTestWarnings::messages().clear();
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    SceneListModel model(&doc);
+    QAbstractItemModelTester tester(&model, QAbstractItemModelTester::FailureReportingMode::Warning);
+    QItemSelectionModel selection(&model);
+    selection.setCurrentIndex(model.index(2), QItemSelectionModel::ClearAndSelect);  // "c"
+    QSignalSpy resets(&model, &QAbstractItemModel::modelAboutToBeReset);
+    QSignalSpy inserted(&model, &QAbstractItemModel::rowsInserted);
+    QSignalSpy removed(&model, &QAbstractItemModel::rowsRemoved);
+    // Qt 6.4 reports row moves with empty selectionChanged signals; count only real changes.
+    int selectionChanges = 0;
+    QObject::connect(&selection, &QItemSelectionModel::selectionChanged, &model,
+                     [&](const QItemSelection& selected, const QItemSelection& deselected) {
+                         if (!selected.isEmpty() || !deselected.isEmpty()) ++selectionChanges;
+                     });
+    auto selectedName = [&] {
+        const QModelIndexList rows = selection.selectedRows();
+        return rows.size() == 1 ? rows.first().data().toString().toStdString() : std::string("(none)");
+    };
+
+    doc.duplicateObject(0);  // a row above "c"
+    EXPECT_EQ(selectedName(), "c");
+    EXPECT_EQ(selection.currentIndex().row(), 3);
+    doc.addObject(sphereObject("d", 9.0f));
+    doc.removeObject(1);  // the copy, above "c"
+    EXPECT_EQ(selectedName(), "c");
+    EXPECT_EQ(selection.currentIndex().row(), 2);
+    QUndoStack* stack = doc.undoStack();
+    while (stack->canUndo()) {
+        stack->undo();
+        EXPECT_EQ(selectedName(), "c");
+    }
+    while (stack->canRedo()) stack->redo();
+    EXPECT_EQ(selectedName(), "c");
+    EXPECT_EQ(model.rowCount(), doc.objectCount());
+    for (int row = 0; row < model.rowCount(); ++row)
+        EXPECT_EQ(model.data(model.index(row)).toString().toStdString(), doc.object(row).name);
+    EXPECT_EQ(resets.count(), 0);
+    // Inserted: the duplicate, "d", the copy back (undo), then the duplicate and "d" again (redo).
+    EXPECT_EQ(inserted.count(), 2 + 1 + 2);
+    // Removed: the copy, "d" and the duplicate (undo), the copy again (redo).
+    EXPECT_EQ(removed.count(), 1 + 2 + 1);
+    EXPECT_EQ(selectionChanges, 0) << "moved with its row, never changed";
+
+    doc.resetScene(threeSpheres());
+    EXPECT_EQ(resets.count(), 1);
+    EXPECT_TRUE(ModelTestWarnings::messages().empty()) << joined(ModelTestWarnings::messages());
+}
+
+// Removing the selected object hands the selection on before the row goes, so a view following
+// the document never sees its current row removed.
+TEST(SceneDocument, RemovedSelectionIsHandedOnFirst) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    doc.setSelected(1);
+    std::vector<std::string> order;
+    QObject::connect(&doc, &SceneDocument::selectionChanged, &doc,
+            [&](int index) { order.push_back("selected " + std::to_string(index)); });
+    QObject::connect(&doc, &SceneDocument::objectAboutToBeRemoved, &doc,
+            [&](int index) { order.push_back("removing " + std::to_string(index)); });
+    doc.removeObject(1);
+    // "c" (row 2) takes the selection, then row 1 goes and "c" is row 1.
+    EXPECT_EQ(order, (std::vector<std::string>{"selected 2", "removing 1", "selected 1"}));
+    EXPECT_EQ(doc.object(doc.selected()).name, "c");
+}
+
+TEST(SceneListModel, ShowsMaterialsAndAppliesDroppedLibraryMaterials) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    SceneListModel model(&doc);
+    EXPECT_EQ(model.data(model.index(1), SceneListModel::MaterialNameRole).toString(), QStringLiteral("b"));
+    EXPECT_EQ(model.data(model.index(1), Qt::EditRole).toString(), QStringLiteral("b")) << "the edit role stays the name";
+    EXPECT_TRUE(model.data(model.index(1), Qt::ToolTipRole).toString().startsWith(QStringLiteral("b · ")));
+
+    LibraryMaterial gold{"Gold", Material{}};
+    gold.material.lambda = 2.5f;
+    gold.material.tint = Rgb(1.0f, 0.8f, 0.3f);
+    std::unique_ptr<QMimeData> mime(materialMimeData(gold));
+    EXPECT_TRUE(model.mimeTypes().contains(QString::fromLatin1(kMaterialMimeType)));
+    EXPECT_FALSE(model.canDropMimeData(mime.get(), Qt::CopyAction, 1, 0, {})) << "between rows: nothing to apply to";
+    QSignalSpy dataChanged(&model, &QAbstractItemModel::dataChanged);
+    ASSERT_TRUE(model.dropMimeData(mime.get(), Qt::CopyAction, -1, -1, model.index(1)));
+    EXPECT_EQ(doc.materialOf(1), gold.material);
+    EXPECT_EQ(doc.namedMaterialOf(1)->libraryEntry, "Gold");
+    EXPECT_EQ(model.data(model.index(1), SceneListModel::MaterialNameRole).toString(), QStringLiteral("Gold"));
+    ASSERT_GE(dataChanged.count(), 1);
+    EXPECT_EQ(dataChanged.last().at(0).value<QModelIndex>().row(), 1);
+
+    QMimeData text;
+    text.setText(QStringLiteral("Gold"));
+    EXPECT_FALSE(model.dropMimeData(&text, Qt::CopyAction, -1, -1, model.index(0)));
+    doc.undoStack()->undo();
+    EXPECT_EQ(model.data(model.index(1), SceneListModel::MaterialNameRole).toString(), QStringLiteral("b"));
 }

@@ -1,11 +1,17 @@
 // The real window under X (Xvfb + Mesa llvmpipe in CI): selection through the scene list, λ edits
 // through the material panel redrawing without rebuilding or re-uploading the chain, imports and
-// their placement, and bad files that leave the scene as it was.
+// their placement, bad files that leave the scene (and the undo stack) as they were, Edit → Undo
+// and Redo, and library materials dropped on the scene list. Saving: test_saving.cpp.
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/library_dock.h"
+#include "mipgloss/ui/library_document.h"
+#include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/main_window.h"
+#include "mipgloss/ui/material_mime.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
+#include "mipgloss/ui/scene_list_model.h"
 #include "mipgloss/ui/viewport.h"
 
 #include "test_support.h"
@@ -13,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QDir>
 #include <QDropEvent>
 #include <QMimeData>
@@ -22,7 +29,12 @@
 #include <QFile>
 #include <QImage>
 #include <QListView>
+#include <QMenu>
+#include <QMenuBar>
 #include <QSignalSpy>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QUndoStack>
 #include <QTemporaryDir>
 #include <QTest>
 
@@ -60,8 +72,12 @@ constexpr int kFrameTimeoutMs = 60000;
     return ::testing::AssertionSuccess();
 }
 
+// A window that keeps to the test's folders (QStandardPaths test mode: autosaves, settings) and
+// discards unsaved changes without a dialog when a test opens or makes a new scene over them.
 std::unique_ptr<MainWindow> openWindow() {
+    QStandardPaths::setTestModeEnabled(true);
     auto w = std::make_unique<MainWindow>();
+    w->prompts().saveChanges = [](const QString&) { return MainWindow::SaveChoice::Discard; };
     w->resize(1200, 760);
     w->show();
     EXPECT_TRUE(QTest::qWaitForWindowExposed(w.get()));
@@ -159,7 +175,7 @@ QByteArray sphereObj(float radius, glm::vec3 centre, int rings = 8, int segments
 
 TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     auto w = openWindow();
-    EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — Figure 1"));
+    EXPECT_EQ(w->windowTitle(), QStringLiteral("Untitled[*] — mipgloss"));
     ASSERT_TRUE(settledFrame(*w));
     ASSERT_EQ(w->document()->objectCount(), 4);
 
@@ -389,11 +405,17 @@ TEST(MainWindow, BadFilesLeaveTheSceneAsItWas) {
 
     for (const QString& env : {textExr, wide}) {
         const std::uint64_t failures = w->environments()->counters().failures;
+        const int steps = doc->undoStack()->count();
+        const QString undoText = doc->undoStack()->undoText();
         EXPECT_TRUE(w->openEnvironment(env));  // it exists; reading it fails on the worker
         ASSERT_TRUE(waitUntil([&] { return w->environments()->counters().failures > failures; },
                               kEnvironmentTimeoutMs))
             << env.toStdString();
         expectUnchanged(env);
+        // The open is withdrawn: no step asks for the file again, none answers the failure.
+        EXPECT_EQ(doc->undoStack()->count(), steps);
+        EXPECT_EQ(doc->undoStack()->undoText(), undoText);
+        EXPECT_FALSE(doc->undoStack()->canRedo());
     }
     EXPECT_FALSE(w->openEnvironment(dir.filePath(QStringLiteral("absent.hdr"))));
     expectUnchanged(dir.filePath(QStringLiteral("absent.hdr")));
@@ -425,13 +447,14 @@ TEST(MainWindow, SaveAndOpenSceneRoundTrip) {
     w->document()->setMaterial(2, m);
     const QString file = dir.filePath(QStringLiteral("mine.json"));
     ASSERT_TRUE(w->saveScene(file)) << w->lastMessage().toStdString();
-    EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — mine.json"));
+    EXPECT_EQ(w->windowTitle(), QStringLiteral("mine.json[*] — mipgloss"));
     w->newScene();
-    EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — Figure 1"));
+    EXPECT_EQ(w->windowTitle(), QStringLiteral("Untitled[*] — mipgloss"));
     EXPECT_NE(w->document()->materialOf(2), m);
     ASSERT_TRUE(w->openScene(file)) << w->lastMessage().toStdString();
     EXPECT_EQ(w->document()->materialOf(2), m);
-    EXPECT_EQ(w->windowTitle(), QStringLiteral("mipgloss — mine.json"));
+    EXPECT_EQ(w->windowTitle(), QStringLiteral("mine.json[*] — mipgloss"));
+    EXPECT_FALSE(w->isWindowModified());
     ASSERT_TRUE(settledFrame(*w));
     const QString png = dir.filePath(QStringLiteral("shot.png"));
     ASSERT_TRUE(w->exportImage(png));
@@ -532,3 +555,128 @@ TEST(MainWindow, IdleDrawsNothingAndIrradianceComesOnlyWhenAsked) {
 }
 
 }  // namespace
+
+TEST(MainWindow, EditMenuUndoesAndRedoesWithTheStandardShortcuts) {
+    auto w = openWindow();
+    SceneDocument* doc = w->document();
+    auto* undo = w->findChild<QAction*>(QStringLiteral("undoAction"));
+    auto* redo = w->findChild<QAction*>(QStringLiteral("redoAction"));
+    ASSERT_TRUE(undo && redo);
+    EXPECT_FALSE(undo->isEnabled());
+    doc->setSelected(1);
+    auto* lambdaSpin = w->materialPanel()->findChild<QDoubleSpinBox*>(QStringLiteral("lambdaSpin"));
+    ASSERT_NE(lambdaSpin, nullptr);
+    typeInto(lambdaSpin, QStringLiteral("0.5"));
+    ASSERT_FLOAT_EQ(doc->materialOf(1).lambda, 0.5f);
+    EXPECT_TRUE(undo->isEnabled());
+    EXPECT_EQ(undo->text(), QStringLiteral("Undo Change λ of Polished"));
+    EXPECT_TRUE(undo->shortcuts().contains(QKeySequence(QKeySequence::Undo)));
+
+    w->activateWindow();
+    if (!QTest::qWaitForWindowActive(w.get())) GTEST_SKIP() << "the window cannot be activated here";
+    w->sceneList()->setFocus();  // not a text field, whose own undo would take the keys
+    QTest::keySequence(w.get(), QKeySequence::Undo);
+    EXPECT_FLOAT_EQ(doc->materialOf(1).lambda, 3.5f);
+    EXPECT_DOUBLE_EQ(lambdaSpin->value(), 3.5);
+    EXPECT_EQ(redo->text(), QStringLiteral("Redo Change λ of Polished"));
+    QTest::keySequence(w.get(), QKeySequence::Redo);
+    EXPECT_FLOAT_EQ(doc->materialOf(1).lambda, 0.5f);
+}
+
+// A library material dragged onto a row of the scene list is applied to that object.
+TEST(MainWindow, LibraryMaterialDroppedOnASceneRowIsApplied) {
+    auto w = openWindow();
+    SceneDocument* doc = w->document();
+    QListView* list = w->sceneList();
+    LibraryMaterial velvet{"Velvet", Material{}};
+    velvet.material.lambda = 6.5f;
+    velvet.material.mode = LookupMode::Normal;
+    std::unique_ptr<QMimeData> mime(materialMimeData(velvet));
+    const QPoint target = list->visualRect(list->model()->index(2, 0)).center();
+    ASSERT_FALSE(target.isNull());
+
+    QDragEnterEvent enter(target, Qt::CopyAction, mime.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &enter);
+    EXPECT_TRUE(enter.isAccepted());
+    QDragMoveEvent move(target, Qt::CopyAction, mime.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &move);
+    EXPECT_TRUE(move.isAccepted());
+    QDropEvent drop(QPointF(target), Qt::CopyAction, mime.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &drop);
+
+    EXPECT_EQ(doc->materialOf(2), velvet.material);
+    EXPECT_EQ(doc->namedMaterialOf(2)->name, "Velvet");
+    EXPECT_NE(doc->materialOf(1), velvet.material) << "only the row it was dropped on";
+    EXPECT_EQ(doc->undoStack()->undoText(), QStringLiteral("Apply Velvet to glossy (λ 5)"));
+    EXPECT_EQ(list->model()->index(2, 0).data(SceneListModel::MaterialNameRole).toString(), QStringLiteral("Velvet"));
+    EXPECT_TRUE(w->isWindowModified());
+    doc->undoStack()->undo();
+    EXPECT_FALSE(w->isWindowModified());
+}
+
+// The environment panel's edits are undo steps too; a drag of the rotation slider is one.
+TEST(MainWindow, EnvironmentRotationDragIsOneUndoStep) {
+    auto w = openWindow();
+    SceneDocument* doc = w->document();
+    auto* rotation = w->findChild<QSlider*>(QStringLiteral("envRotationSlider"));
+    auto* exposure = w->findChild<QDoubleSpinBox*>(QStringLiteral("exposureSpin"));
+    ASSERT_TRUE(rotation && exposure);
+    const Scene before = doc->scene();
+    rotation->setSliderDown(true);  // what pressing the handle does
+    for (int degrees = 5; degrees <= 90; degrees += 5) rotation->setValue(degrees);
+    rotation->setSliderDown(false);
+    EXPECT_FLOAT_EQ(doc->scene().environment.rotationDegrees, 90.0f);
+    EXPECT_EQ(doc->undoStack()->count(), 1);
+    EXPECT_EQ(doc->undoStack()->undoText(), QStringLiteral("Rotate environment"));
+    typeInto(exposure, QStringLiteral("1.5"));
+    EXPECT_EQ(doc->undoStack()->count(), 2);
+    EXPECT_EQ(doc->undoStack()->undoText(), QStringLiteral("Change exposure"));
+    doc->undoStack()->undo();
+    doc->undoStack()->undo();
+    EXPECT_EQ(doc->scene(), before);
+    EXPECT_EQ(rotation->value(), 0);
+    EXPECT_DOUBLE_EQ(exposure->value(), 0.0);
+    EXPECT_FALSE(w->isWindowModified());
+}
+
+// The library dock lives in the window: File has Import/Export library, applying an entry is a
+// scene edit (it marks the scene modified and undoes), and a library edit is saved at once and
+// undoable from the same Edit menu but never marks the scene modified.
+TEST(MainWindow, LibraryDockAppliesEntriesAndItsEditsNeverMarkTheScene) {
+    auto w = openWindow();
+    test::TempDir dir;
+    const fs::path file = dir.path() / "library.json";
+    ASSERT_TRUE(w->library()->open(file));
+    ASSERT_NE(w->libraryDock(), nullptr);
+    EXPECT_EQ(w->libraryDock()->objectName(), QStringLiteral("libraryDock"));
+    bool importInMenu = false;
+    for (QAction* a : w->menuBar()->actions())
+        if (a->menu() && a->menu()->actions().contains(w->libraryDock()->importLibraryAction())) importInMenu = true;
+    EXPECT_TRUE(importInMenu) << "File → Import library";
+    EXPECT_FALSE(w->isWindowModified());
+
+    LibraryMaterial gold{"Gold", {}};
+    gold.material.lambda = 2.5f;
+    gold.material.tint = {1.0f, 0.8f, 0.3f};
+    ASSERT_EQ(w->library()->add(gold), 0);
+    EXPECT_FALSE(w->isWindowModified()) << "a library edit is saved already; the scene is unchanged";
+    EXPECT_EQ(loadLibrary(file).entries.size(), 1u);
+
+    SceneDocument* doc = w->document();
+    doc->setSelected(2);
+    const Material before = doc->materialOf(2);
+    w->libraryDock()->setCurrentRow(0);
+    w->libraryDock()->applyEntryAction()->trigger();
+    EXPECT_EQ(doc->materialOf(2), gold.material);
+    ASSERT_NE(doc->namedMaterialOf(2), nullptr);
+    EXPECT_EQ(doc->namedMaterialOf(2)->libraryEntry, "Gold");
+    EXPECT_TRUE(w->isWindowModified());
+
+    doc->undoStack()->undo();  // the apply
+    EXPECT_EQ(doc->materialOf(2), before);
+    EXPECT_FALSE(w->isWindowModified()) << "undone back to the opened scene";
+    doc->undoStack()->undo();  // the library add
+    EXPECT_EQ(w->library()->library().entries.size(), 0u);
+    EXPECT_EQ(loadLibrary(file).entries.size(), 0u) << "the undo is on disk too";
+    EXPECT_FALSE(w->isWindowModified());
+}

@@ -1,10 +1,14 @@
 #include "mipgloss/ui/main_window.h"
 
 #include "mipgloss/ibl/builders.h"
-#include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/mesh.h"
-#include "mipgloss/scene/scene.h"
+#include "mipgloss/ui/atomic_file.h"
+#include "mipgloss/ui/autosave.h"
 #include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/environment_panel.h"
+#include "mipgloss/ui/library_dock.h"
+#include "mipgloss/ui/library_document.h"
+#include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_file.h"
@@ -13,48 +17,34 @@
 
 #include <QAction>
 #include <QApplication>
-#include <QCheckBox>
-#include <QComboBox>
-#include <QDir>
+#include <QCloseEvent>
 #include <QDockWidget>
-#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
-#include <QFutureWatcher>
 #include <QHBoxLayout>
 #include <QImage>
 #include <QLabel>
 #include <QListView>
 #include <QLocale>
 #include <QMenuBar>
+#include <QMessageBox>
 #include <QMimeData>
 #include <QOpenGLContext>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSignalBlocker>
-#include <QSlider>
 #include <QStatusBar>
+#include <QTimer>
 #include <QToolButton>
+#include <QUndoStack>
 #include <QUrl>
 #include <QVBoxLayout>
-#include <QtConcurrent/QtConcurrentRun>
 
-#include <algorithm>
-#include <functional>
+#include <cmath>
 #include <iostream>
-#include <memory>
 
 namespace mipgloss::ui {
-
-struct MainWindow::ImportResult {
-    QString path;
-    std::shared_ptr<const Mesh> mesh;
-    QString error;
-    std::vector<std::string> warnings;
-};
 
 namespace {
 
@@ -62,10 +52,6 @@ enum class DropKind { None, Scene, Mesh, Environment };
 
 // Image formats the environment import reads (OpenImageIO); a directory is a six-face set.
 const QStringList kEnvironmentSuffixes = {"exr", "hdr", "png", "jpg", "jpeg", "tif", "tiff", "pfm"};
-const int kFaceSizes[] = {64, 128, 256, 512, 1024};
-
-// "128²". (Not "%1²": QString::arg reads the superscript two as a digit of the placeholder.)
-QString squared(int size) { return QString::number(size) + QStringLiteral("²"); }
 
 DropKind classify(const QString& path) {
     const QFileInfo info(path);
@@ -78,64 +64,77 @@ DropKind classify(const QString& path) {
     return DropKind::None;
 }
 
-QString environmentName(const std::string& source) {
-    if (source == kBuiltinEnvironment) return QStringLiteral("courtyard");
-    return QFileInfo(QString::fromStdString(source)).fileName();
-}
-
-MainWindow::ImportResult loadOne(const QString& path) {
-    MainWindow::ImportResult result;
-    result.path = path;
-    try {
-        MeshReport report;
-        Mesh mesh = loadMesh(path.toStdString(), &report);
-        if (mesh.name.empty()) mesh.name = QFileInfo(path).completeBaseName().toStdString();
-        result.mesh = std::make_shared<const Mesh>(std::move(mesh));
-        result.warnings = std::move(report.warnings);
-    } catch (const MeshError& e) {
-        result.error = QString::fromStdString(e.what());
-    } catch (const std::exception& e) {  // e.g. out of memory on a huge file
-        result.error = path + QStringLiteral(": ") + QString::fromStdString(e.what());
-    }
-    return result;
-}
-
-// The placement rule of main_window.h: scale to the median radius when wildly different, put to
-// the right of the visible scene.
-Transform placeBeside(const Scene& scene, const Mesh& mesh) {
-    std::vector<float> radii;
-    for (const SceneObject& o : scene.objects)
-        if (o.visible && o.mesh) radii.push_back(o.worldRadius());
-    Transform t;
-    const float r = mesh.bounds.radius();
-    float typical = 0.0f;
-    if (!radii.empty()) {
-        std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-        typical = radii[radii.size() / 2];
-    }
-    if (typical > 0.0f && r > 0.0f && (r > 4.0f * typical || r < 0.25f * typical))
-        t.scale = typical / r;
-    const float placedRadius = r * t.scale;
-    glm::vec3 centre(0.0f);
-    if (!radii.empty()) {
-        const Bounds b = sceneBounds(scene);
-        const float gap = 0.2f * (typical > 0.0f ? typical : placedRadius);
-        centre = glm::vec3(b.max.x + gap + placedRadius, b.centre().y, b.centre().z);
-    }
-    t.translation = centre - t.scale * mesh.bounds.centre();
-    return t;
+QString withSuffix(QString path, const QString& suffix) {
+    if (!path.isEmpty() && QFileInfo(path).suffix().isEmpty()) path += QLatin1Char('.') + suffix;
+    return path;
 }
 
 }  // namespace
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), autosave_(std::make_unique<Autosave>()) {
     setObjectName(QStringLiteral("mainWindow"));
     document_ = new SceneDocument(this);
     document_->resetScene(makeFigure1Scene());
     environments_ = new EnvironmentManager(this);
     environments_->watch(document_);
+    importer_ = new MeshImporter(document_, this);
+    setDefaultPrompts();
 
-    // Centre: the message banner above the viewport.
+    createCentre();
+    createActions();
+    createDocks();
+    createMenus();
+    createStatusBar();
+    setAcceptDrops(true);
+
+    connect(document_, &SceneDocument::environmentChanged, this, &MainWindow::refreshStatus);
+    connect(document_, &SceneDocument::changed, this, &MainWindow::updateModified);
+    connect(environments_, &EnvironmentManager::environmentReady, this, &MainWindow::refreshStatus);
+    connect(environments_, &EnvironmentManager::failed, this, &MainWindow::onEnvironmentFailed);
+    connect(importer_, &MeshImporter::finished, this, &MainWindow::finishImport);
+    connect(viewport_, &Viewport::objectClicked, document_, &SceneDocument::setSelected);
+    connect(viewport_, &Viewport::glFailed, this, [this](const QString& message) {
+        showMessage(tr("OpenGL: %1").arg(message), true);
+    });
+
+    autosaveTimer_ = new QTimer(this);
+    autosaveTimer_->setInterval(kDefaultAutosaveIntervalMs);
+    connect(autosaveTimer_, &QTimer::timeout, this, &MainWindow::autosaveNow);
+    autosaveTimer_->start();
+
+    markSaved();
+    refreshTitle();
+    refreshStatus();
+    resize(1280, 800);
+    const QStringList gone = RecentFiles::prune();
+    if (!gone.isEmpty())
+        showMessage(tr("No longer found, removed from Open Recent: %1").arg(gone.join(QStringLiteral(", "))),
+                    false);
+}
+
+MainWindow::~MainWindow() {
+    // Unsaved work the user never chose to drop keeps its autosave (offered at the next start).
+    if (!isWindowModified()) autosave_->discard();
+    // GL resources first (the viewport makes its context current), then the worker, then the
+    // panels and the model that read the document, and the document last.
+    // ~Viewport frees its GL resources itself; the context's aboutToBeDestroyed, emitted later
+    // from ~QOpenGLWidget, must not call back into the half-destroyed viewport.
+    if (QOpenGLContext* context = viewport_->context()) context->disconnect(viewport_);
+    delete viewport_;
+    viewport_ = nullptr;
+    delete environments_;
+    environments_ = nullptr;
+    qDeleteAll(findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly));
+    delete sceneModel_;
+    delete importer_;
+    delete document_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Construction
+
+void MainWindow::createCentre() {
+    // The message banner above the viewport.
     auto* centre = new QWidget(this);
     auto* centreLayout = new QVBoxLayout(centre);
     centreLayout->setContentsMargins(0, 0, 0, 0);
@@ -167,10 +166,81 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     viewport_->setObjectName(QStringLiteral("viewport"));
     centreLayout->addWidget(viewport_, 1);
     setCentralWidget(centre);
+}
 
+void MainWindow::createActions() {
+    auto make = [this](const QString& text, const char* name) {
+        auto* action = new QAction(text, this);
+        action->setObjectName(QLatin1String(name));
+        return action;
+    };
+
+    newAction_ = make(tr("&New scene (Figure 1)"), "newAction");
+    newAction_->setShortcuts(QKeySequence::New);
+    connect(newAction_, &QAction::triggered, this, &MainWindow::newScene);
+    openAction_ = make(tr("&Open scene…"), "openAction");
+    openAction_->setShortcuts(QKeySequence::Open);
+    connect(openAction_, &QAction::triggered, this, &MainWindow::openSceneDialog);
+    for (QAction*& recent : recentFileActions_) {
+        recent = make(QString(), "recentFileAction");
+        recent->setVisible(false);
+        connect(recent, &QAction::triggered, this,
+                [this, recent] { openRecentFile(recent->data().toString()); });
+    }
+    clearRecentAction_ = make(tr("&Clear list"), "clearRecentAction");
+    connect(clearRecentAction_, &QAction::triggered, this, [this] {
+        RecentFiles::clear();
+        updateRecentFileActions();
+    });
+    saveAction_ = make(tr("&Save scene"), "saveAction");
+    saveAction_->setShortcuts(QKeySequence::Save);
+    connect(saveAction_, &QAction::triggered, this, &MainWindow::save);
+    saveAsAction_ = make(tr("Save scene &as…"), "saveAsAction");
+    saveAsAction_->setShortcuts(QKeySequence::SaveAs);
+    connect(saveAsAction_, &QAction::triggered, this, &MainWindow::saveAs);
+    openEnvironmentAction_ = make(tr("Open &environment…"), "openEnvironmentAction");
+    openEnvironmentAction_->setShortcut(QKeySequence(tr("Ctrl+E")));
+    connect(openEnvironmentAction_, &QAction::triggered, this, &MainWindow::openEnvironmentDialog);
+    openEnvironmentFolderAction_ = make(tr("Open environment &folder…"), "openEnvironmentFolderAction");
+    connect(openEnvironmentFolderAction_, &QAction::triggered, this, &MainWindow::openEnvironmentFolderDialog);
+    importMeshAction_ = make(tr("&Import mesh…"), "importMeshAction");
+    importMeshAction_->setShortcut(QKeySequence(tr("Ctrl+I")));
+    connect(importMeshAction_, &QAction::triggered, this, &MainWindow::importMeshDialog);
+    exportImageAction_ = make(tr("E&xport image…"), "exportImageAction");
+    connect(exportImageAction_, &QAction::triggered, this, &MainWindow::exportImageDialog);
+    quitAction_ = make(tr("&Quit"), "quitAction");
+    quitAction_->setShortcuts(QKeySequence::Quit);
+    connect(quitAction_, &QAction::triggered, this, &QWidget::close);
+
+    // The stack keeps their text ("Undo Change λ of Gold") and enabled state.
+    undoAction_ = document_->undoStack()->createUndoAction(this);
+    undoAction_->setObjectName(QStringLiteral("undoAction"));
+    undoAction_->setShortcuts(QKeySequence::Undo);
+    redoAction_ = document_->undoStack()->createRedoAction(this);
+    redoAction_->setObjectName(QStringLiteral("redoAction"));
+    redoAction_->setShortcuts(QKeySequence::Redo);
+    duplicateAction_ = make(tr("&Duplicate"), "duplicateAction");
+    duplicateAction_->setShortcut(QKeySequence(tr("Ctrl+D")));
+    connect(duplicateAction_, &QAction::triggered, this, &MainWindow::duplicateSelected);
+    removeAction_ = make(tr("&Remove"), "removeAction");
+    // Delete removes only while the scene list has the focus (createSceneDock), never while typing
+    // in a spin box.
+    removeAction_->setShortcut(QKeySequence::Delete);
+    removeAction_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    connect(removeAction_, &QAction::triggered, this, &MainWindow::removeSelected);
+
+    frameAllAction_ = make(tr("&Frame all"), "frameAllAction");
+    frameAllAction_->setShortcut(QKeySequence(Qt::Key_F));
+    connect(frameAllAction_, &QAction::triggered, this, &MainWindow::frameAll);
+    showCountersAction_ = make(tr("Show &counters overlay"), "showCountersAction");
+    showCountersAction_->setCheckable(true);
+    connect(showCountersAction_, &QAction::toggled, viewport_, &Viewport::setShowCounters);
+}
+
+void MainWindow::createDocks() {
     auto* sceneDock = new QDockWidget(tr("Scene"), this);
     sceneDock->setObjectName(QStringLiteral("sceneDock"));
-    sceneDock->setWidget(buildSceneDock());
+    sceneDock->setWidget(createSceneDock());
     addDockWidget(Qt::LeftDockWidgetArea, sceneDock);
 
     auto* materialDock = new QDockWidget(tr("Material"), this);
@@ -181,266 +251,108 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
     auto* environmentDock = new QDockWidget(tr("Environment"), this);
     environmentDock->setObjectName(QStringLiteral("environmentDock"));
-    environmentDock->setWidget(buildEnvironmentDock());
+    environmentPanel_ = new EnvironmentPanel(document_, environments_, environmentDock);
+    connect(environmentPanel_, &EnvironmentPanel::openRequested, this, &MainWindow::openEnvironmentDialog);
+    environmentDock->setWidget(environmentPanel_);
     addDockWidget(Qt::RightDockWidgetArea, environmentDock);
+
+    // The library: beside the material panel, tabbed, so a material and its library are one click
+    // apart. A library that cannot be read is refused (its file left alone) and the dock says so.
+    library_ = new LibraryDocument(document_->undoStack(), this);
+    libraryDock_ = new LibraryDock(library_, document_, environments_, this);
+    connect(libraryDock_, &LibraryDock::messageShown, this,
+            [this](const QString& message, bool error) { showMessage(message, error); });
+    addDockWidget(Qt::RightDockWidgetArea, libraryDock_);
+    tabifyDockWidget(materialDock, libraryDock_);
+    materialDock->raise();
+    if (!library_->open(defaultLibraryPath()))
+        showMessage(tr("Your material library could not be read, so it is left as it is: %1")
+                        .arg(library_->lastError()),
+                    true);
 
     // The viewport gets most of the width.
     resizeDocks({sceneDock, materialDock}, {200, 360}, Qt::Horizontal);
-
-    buildMenus();
-    buildStatusBar();
-    setAcceptDrops(true);
-
-    connect(document_, &SceneDocument::environmentChanged, this, [this] {
-        refreshEnvironmentWidgets();
-        refreshStatus();
-    });
-    connect(document_, &SceneDocument::displayChanged, this,
-            &MainWindow::refreshEnvironmentWidgets);
-    connect(environments_, &EnvironmentManager::environmentReady, this, [this] {
-        refreshEnvironmentWidgets();
-        refreshStatus();
-    });
-    connect(environments_, &EnvironmentManager::failed, this, &MainWindow::onEnvironmentFailed);
-    connect(viewport_, &Viewport::objectClicked, document_, &SceneDocument::setSelected);
-    connect(viewport_, &Viewport::glFailed, this, [this](const QString& message) {
-        showMessage(tr("OpenGL: %1").arg(message), true);
-    });
-
-    refreshEnvironmentWidgets();
-    refreshStatus();
-    refreshTitle();
-    resize(1280, 800);
 }
 
-MainWindow::~MainWindow() {
-    // GL resources first (the viewport makes its context current), then the worker, then the
-    // panels and the model that read the document, and the document last.
-    // ~Viewport frees its GL resources itself; the context's aboutToBeDestroyed, emitted later
-    // from ~QOpenGLWidget, must not call back into the half-destroyed viewport.
-    if (QOpenGLContext* context = viewport_->context()) context->disconnect(viewport_);
-    delete viewport_;
-    viewport_ = nullptr;
-    delete environments_;
-    environments_ = nullptr;
-    qDeleteAll(findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly));
-    delete sceneModel_;
-    delete document_;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Construction
-
-void MainWindow::buildMenus() {
-    QMenu* file = menuBar()->addMenu(tr("&File"));
-    file->addAction(tr("&New scene (Figure 1)"), QKeySequence::New, this, &MainWindow::newScene);
-    file->addAction(tr("&Open scene…"), QKeySequence::Open, this, &MainWindow::openSceneDialog);
-    file->addAction(tr("Save scene &as…"), QKeySequence::SaveAs, this,
-                    &MainWindow::saveSceneDialog);
-    file->addSeparator();
-    file->addAction(tr("Open &environment…"), QKeySequence(tr("Ctrl+E")), this,
-                    &MainWindow::openEnvironmentDialog);
-    file->addAction(tr("Open environment &folder…"), this, [this] {
-        const QString dir = QFileDialog::getExistingDirectory(
-            this, tr("Folder with six face images"), lastDirectory_);
-        if (!dir.isEmpty()) openEnvironment(dir);
-    });
-    file->addAction(tr("&Import mesh…"), QKeySequence(tr("Ctrl+I")), this,
-                    &MainWindow::importMeshDialog);
-    file->addAction(tr("E&xport image…"), this, &MainWindow::exportImageDialog);
-    file->addSeparator();
-    file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
-
-    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
-    edit->addAction(tr("&Duplicate"), QKeySequence(tr("Ctrl+D")), this,
-                    &MainWindow::duplicateSelected);
-
-    QMenu* view = menuBar()->addMenu(tr("&View"));
-    view->addAction(tr("&Frame all"), QKeySequence(Qt::Key_F), this, &MainWindow::frameAll);
-    QAction* counters = view->addAction(tr("Show &counters overlay"));
-    counters->setObjectName(QStringLiteral("showCountersAction"));
-    counters->setCheckable(true);
-    connect(counters, &QAction::toggled, viewport_, &Viewport::setShowCounters);
-    view->addSeparator();
-    for (QDockWidget* dock : findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly))
-        view->addAction(dock->toggleViewAction());
-}
-
-QWidget* MainWindow::buildSceneDock() {
+QWidget* MainWindow::createSceneDock() {
     auto* panel = new QWidget(this);
     auto* layout = new QVBoxLayout(panel);
     sceneModel_ = new SceneListModel(document_, this);
     sceneList_ = new QListView(panel);
     sceneList_->setObjectName(QStringLiteral("sceneList"));
     sceneList_->setModel(sceneModel_);
+    sceneList_->setItemDelegate(new SceneListDelegate(sceneList_));
     sceneList_->setSelectionMode(QAbstractItemView::SingleSelection);
     sceneList_->setContextMenuPolicy(Qt::ActionsContextMenu);
+    // Library materials dropped onto a row (SceneListModel::dropMimeData).
+    sceneList_->setDragDropMode(QAbstractItemView::DropOnly);
+    sceneList_->setDefaultDropAction(Qt::CopyAction);
+    sceneList_->setDropIndicatorShown(true);
     layout->addWidget(sceneList_, 1);
 
-    // Selection, both ways. The model resets on objectsChanged (connected first, in the model),
-    // and then the list's selection is put back from the document.
+    // Selection, both ways. The model moves rows rather than resetting, and the document hands a
+    // removed object's selection on before removing it, so the list's selection never changes
+    // behind the document's back; each direction sets the other only when it differs, so the
+    // round trip ends there.
     connect(sceneList_->selectionModel(), &QItemSelectionModel::selectionChanged, this, [this] {
-        if (syncingSelection_) return;
         const QModelIndexList rows = sceneList_->selectionModel()->selectedRows();
         document_->setSelected(rows.isEmpty() ? -1 : rows.first().row());
     });
-    connect(document_, &SceneDocument::selectionChanged, this, &MainWindow::syncListSelection);
-    connect(document_, &SceneDocument::objectsChanged, this, &MainWindow::syncListSelection);
+    connect(document_, &SceneDocument::selectionChanged, this, &MainWindow::showSelectionInList);
 
-    auto* duplicate = new QAction(tr("Duplicate"), sceneList_);
-    duplicate->setObjectName(QStringLiteral("duplicateAction"));
-    connect(duplicate, &QAction::triggered, this, &MainWindow::duplicateSelected);
-    auto* remove = new QAction(tr("Remove"), sceneList_);
-    remove->setObjectName(QStringLiteral("removeAction"));
-    // Delete removes only while the list has focus, never while typing in a spin box.
-    remove->setShortcut(QKeySequence::Delete);
-    remove->setShortcutContext(Qt::WidgetWithChildrenShortcut);
-    connect(remove, &QAction::triggered, this, &MainWindow::removeSelected);
-    auto* frame = new QAction(tr("Frame all"), sceneList_);
-    connect(frame, &QAction::triggered, this, &MainWindow::frameAll);
-    sceneList_->addActions({duplicate, remove, frame});
-
+    sceneList_->addActions({duplicateAction_, removeAction_, frameAllAction_});
     auto* buttons = new QHBoxLayout;
-    for (QAction* action : {duplicate, remove, frame}) {
+    for (QAction* action : {duplicateAction_, removeAction_, frameAllAction_}) {
         auto* button = new QToolButton(panel);
         button->setDefaultAction(action);
         buttons->addWidget(button);
     }
     buttons->addStretch(1);
     layout->addLayout(buttons);
-    syncListSelection();
+    showSelectionInList(document_->selected());
     return panel;
 }
 
-QWidget* MainWindow::buildEnvironmentDock() {
-    auto* panel = new QWidget(this);
-    auto* form = new QFormLayout(panel);
+void MainWindow::createMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(newAction_);
+    file->addAction(openAction_);
+    recentMenu_ = file->addMenu(tr("Open &recent"));
+    recentMenu_->setObjectName(QStringLiteral("recentMenu"));
+    for (QAction* recent : recentFileActions_) recentMenu_->addAction(recent);
+    recentMenu_->addSeparator();
+    recentMenu_->addAction(clearRecentAction_);
+    connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::updateRecentFileActions);
+    updateRecentFileActions();
+    file->addAction(saveAction_);
+    file->addAction(saveAsAction_);
+    file->addSeparator();
+    file->addAction(openEnvironmentAction_);
+    file->addAction(openEnvironmentFolderAction_);
+    file->addAction(importMeshAction_);
+    file->addAction(exportImageAction_);
+    file->addSeparator();
+    file->addAction(libraryDock_->importLibraryAction());
+    file->addAction(libraryDock_->exportLibraryAction());
+    file->addSeparator();
+    file->addAction(quitAction_);
 
-    envSource_ = new QLabel(panel);
-    envSource_->setObjectName(QStringLiteral("envSourceLabel"));
-    envSource_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    auto* open = new QPushButton(tr("Open…"), panel);
-    connect(open, &QPushButton::clicked, this, &MainWindow::openEnvironmentDialog);
-    auto* sourceRow = new QHBoxLayout;
-    sourceRow->addWidget(envSource_, 1);
-    sourceRow->addWidget(open);
-    form->addRow(tr("Source"), sourceRow);
-    envInfo_ = new QLabel(panel);
-    envInfo_->setObjectName(QStringLiteral("envInfoLabel"));
-    envInfo_->setWordWrap(true);
-    form->addRow(QString(), envInfo_);
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    edit->addAction(undoAction_);
+    edit->addAction(redoAction_);
+    edit->addSeparator();
+    edit->addAction(duplicateAction_);
+    edit->addAction(removeAction_);
 
-    auto editEnvironment = [this](const std::function<void(EnvironmentSettings&)>& edit) {
-        EnvironmentSettings s = document_->scene().environment;
-        edit(s);
-        document_->setEnvironment(s);
-    };
-    auto editDisplay = [this](const std::function<void(DisplaySettings&)>& edit) {
-        DisplaySettings d = document_->scene().display;
-        edit(d);
-        document_->setDisplay(d);
-    };
-
-    builder_ = new QComboBox(panel);
-    builder_->setObjectName(QStringLiteral("builderCombo"));
-    for (const Builder b : kAllBuilders) builder_->addItem(QString::fromLatin1(builderName(b)));
-    connect(builder_, &QComboBox::currentTextChanged, this, [editEnvironment](const QString& name) {
-        Builder builder;
-        if (parseBuilder(name.toStdString(), builder))
-            editEnvironment([&](EnvironmentSettings& s) { s.builder = builder; });
-    });
-    form->addRow(tr("Mip builder"), builder_);
-
-    faceSize_ = new QComboBox(panel);
-    faceSize_->setObjectName(QStringLiteral("faceSizeCombo"));
-    for (int size : kFaceSizes) faceSize_->addItem(squared(size), size);
-    connect(faceSize_, &QComboBox::currentIndexChanged, this, [this, editEnvironment](int) {
-        const int size = faceSize_->currentData().toInt();
-        editEnvironment([size](EnvironmentSettings& s) { s.faceSize = size; });
-    });
-    form->addRow(tr("Face size"), faceSize_);
-
-    handedness_ = new QComboBox(panel);
-    handedness_->setObjectName(QStringLiteral("handednessCombo"));
-    handedness_->addItem(tr("right-handed (GL)"), static_cast<int>(Handedness::Right));
-    handedness_->addItem(tr("left-handed (Irrlicht)"), static_cast<int>(Handedness::Left));
-    handedness_->setToolTip(tr("How six face images are oriented (docs/conventions.md, Handedness)"));
-    connect(handedness_, &QComboBox::currentIndexChanged, this, [this, editEnvironment](int) {
-        const auto h = static_cast<Handedness>(handedness_->currentData().toInt());
-        editEnvironment([h](EnvironmentSettings& s) { s.handedness = h; });
-    });
-    form->addRow(tr("Face images"), handedness_);
-
-    rotation_ = new QSlider(Qt::Horizontal, panel);
-    rotation_->setObjectName(QStringLiteral("envRotationSlider"));
-    rotation_->setRange(-180, 180);
-    rotation_->setToolTip(tr("Turns the environment about +Y (degrees); never rebuilds"));
-    connect(rotation_, &QSlider::valueChanged, this, [editEnvironment](int degrees) {
-        editEnvironment([degrees](EnvironmentSettings& s) {
-            s.rotationDegrees = static_cast<float>(degrees);
-        });
-    });
-    form->addRow(tr("Rotation"), rotation_);
-
-    showBackground_ = new QCheckBox(tr("Show"), panel);
-    showBackground_->setObjectName(QStringLiteral("showBackgroundCheck"));
-    connect(showBackground_, &QCheckBox::toggled, this, [editDisplay](bool on) {
-        editDisplay([on](DisplaySettings& d) { d.showBackground = on; });
-    });
-    backgroundBlur_ = new QDoubleSpinBox(panel);
-    backgroundBlur_->setObjectName(QStringLiteral("backgroundBlurSpin"));
-    backgroundBlur_->setPrefix(QStringLiteral("blur λ "));
-    backgroundBlur_->setDecimals(2);
-    backgroundBlur_->setSingleStep(0.25);
-    // The same λ as a material's (phong.h): one meaning under any environment and face size.
-    backgroundBlur_->setRange(0.0, kMaxLambda);
-    backgroundBlur_->setToolTip(
-        tr("The background's blur λ, as a material's: the Phong lobe n = 3·128²·4^−λ − 1, the same "
-           "under any environment and face size; 0 is sharp, each +1 makes the lobe twice as "
-           "wide"));
-    backgroundBlur_->setKeyboardTracking(false);
-    connect(backgroundBlur_, &QDoubleSpinBox::valueChanged, this, [editDisplay](double v) {
-        editDisplay([v](DisplaySettings& d) { d.backgroundLambda = static_cast<float>(v); });
-    });
-    auto* backgroundRow = new QHBoxLayout;
-    backgroundRow->addWidget(showBackground_);
-    backgroundRow->addWidget(backgroundBlur_, 1);
-    form->addRow(tr("Background"), backgroundRow);
-
-    exposure_ = new QDoubleSpinBox(panel);
-    exposure_->setObjectName(QStringLiteral("exposureSpin"));
-    exposure_->setRange(-20.0, 20.0);
-    exposure_->setSingleStep(0.5);
-    exposure_->setDecimals(1);
-    exposure_->setSuffix(QStringLiteral(" EV"));
-    exposure_->setKeyboardTracking(false);
-    connect(exposure_, &QDoubleSpinBox::valueChanged, this, [editDisplay](double v) {
-        editDisplay([v](DisplaySettings& d) { d.exposureEv = static_cast<float>(v); });
-    });
-    form->addRow(tr("Exposure"), exposure_);
-
-    toneMap_ = new QComboBox(panel);
-    toneMap_->setObjectName(QStringLiteral("toneMapCombo"));
-    for (ToneMap map : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
-        toneMap_->addItem(QString::fromLatin1(toneMapName(map)), static_cast<int>(map));
-    connect(toneMap_, &QComboBox::currentIndexChanged, this, [this, editDisplay](int) {
-        const auto map = static_cast<ToneMap>(toneMap_->currentData().toInt());
-        editDisplay([map](DisplaySettings& d) { d.toneMap = map; });
-    });
-    form->addRow(tr("Tone map"), toneMap_);
-
-    samples_ = new QComboBox(panel);
-    samples_->setObjectName(QStringLiteral("samplesCombo"));
-    for (int n : {1, 2, 4, 8}) samples_->addItem(n == 1 ? tr("off") : QStringLiteral("%1×").arg(n), n);
-    connect(samples_, &QComboBox::currentIndexChanged, this, [this, editDisplay](int) {
-        const int n = samples_->currentData().toInt();
-        editDisplay([n](DisplaySettings& d) { d.samples = n; });
-    });
-    form->addRow(tr("Multisampling"), samples_);
-    return panel;
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addAction(frameAllAction_);
+    view->addAction(showCountersAction_);
+    view->addSeparator();
+    for (QDockWidget* dock : findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly))
+        view->addAction(dock->toggleViewAction());
 }
 
-void MainWindow::buildStatusBar() {
+void MainWindow::createStatusBar() {
     envStatus_ = new QLabel(this);
     envStatus_->setObjectName(QStringLiteral("envStatusLabel"));
     progress_ = new QProgressBar(this);
@@ -464,81 +376,264 @@ void MainWindow::buildStatusBar() {
                 progress_->setFormat(stage + QStringLiteral(" %p%"));
                 progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
             });
+    connect(importer_, &MeshImporter::backgroundStarted, this, [this](int files) {
+        progress_->setRange(0, 0);  // busy indicator: OpenMesh reports no progress
+        progress_->setFormat(tr("importing"));
+        progress_->show();
+        showMessage(tr("Importing %n mesh(es)…", nullptr, files), false);
+    });
+}
+
+void MainWindow::setDefaultPrompts() {
+    prompts_.saveChanges = [this](const QString& name) {
+        QMessageBox box(QMessageBox::Warning, tr("mipgloss"), tr("Save the changes to %1?").arg(name),
+                        QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
+        box.setObjectName(QStringLiteral("saveChangesBox"));
+        box.setInformativeText(tr("Changes you do not save are lost."));
+        box.setDefaultButton(QMessageBox::Save);
+        switch (box.exec()) {
+            case QMessageBox::Save: return SaveChoice::Save;
+            case QMessageBox::Discard: return SaveChoice::Discard;
+            default: return SaveChoice::Cancel;
+        }
+    };
+    prompts_.saveFileName = [this](const QString& suggestion) {
+        return QFileDialog::getSaveFileName(this, tr("Save scene as"), suggestion,
+                                            tr("mipgloss scenes (*.json)"));
+    };
+    prompts_.restoreAutosave = [this](const QString& question) {
+        QMessageBox box(QMessageBox::Question, tr("mipgloss"), question, QMessageBox::NoButton, this);
+        box.setObjectName(QStringLiteral("restoreAutosaveBox"));
+        QPushButton* restore = box.addButton(tr("Restore"), QMessageBox::AcceptRole);
+        box.addButton(QMessageBox::Discard);
+        box.setDefaultButton(restore);
+        box.exec();
+        return box.clickedButton() == restore;
+    };
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files: modified state, saving, recent files, autosave
+
+QString MainWindow::displayName() const {
+    return sceneFile_.isEmpty() ? tr("Untitled") : QFileInfo(sceneFile_).fileName();
+}
+
+void MainWindow::refreshTitle() {
+    setWindowTitle(QStringLiteral("%1[*] — mipgloss").arg(displayName()));
+}
+
+void MainWindow::markSaved() {
+    savedScene_ = document_->scene();
+    updateModified();
+}
+
+void MainWindow::matchesFile(const QString& path) {
+    sceneFile_ = QFileInfo(path).absoluteFilePath();
+    lastDirectory_ = QFileInfo(path).absolutePath();
+    markSaved();
+    forgetAutosave();
+    RecentFiles::add(sceneFile_);
+    updateRecentFileActions();
+    refreshTitle();
+}
+
+void MainWindow::updateModified() {
+    const bool modified = !savedScene_ || document_->scene() != *savedScene_;
+    // Back at the saved state (undone to it): the autosave holds nothing worth restoring.
+    if (!modified && isWindowModified()) forgetAutosave();
+    setWindowModified(modified);
+}
+
+void MainWindow::forgetAutosave() {
+    autosave_->discard();
+    lastAutosaved_.reset();
+}
+
+bool MainWindow::maybeSave() {
+    if (!isWindowModified()) return true;
+    switch (prompts_.saveChanges(displayName())) {
+        case SaveChoice::Save: return save();
+        case SaveChoice::Discard: return true;
+        case SaveChoice::Cancel: break;
+    }
+    return false;
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maybeSave()) {
+        event->ignore();
+        return;
+    }
+    // A clean exit: the work is saved or knowingly dropped.
+    autosaveTimer_->stop();
+    forgetAutosave();
+    event->accept();
+}
+
+bool MainWindow::newScene() {
+    if (!maybeSave()) return false;
+    document_->resetScene(makeFigure1Scene());
+    sceneFile_.clear();
+    markSaved();
+    forgetAutosave();
+    refreshTitle();
+    viewport_->frameAll();
+    showMessage(tr("New scene: Figure 1"), false);
+    return true;
+}
+
+bool MainWindow::openScene(const QString& path) { return maybeSave() && loadSceneFile(path); }
+
+bool MainWindow::loadSceneFile(const QString& path) {
+    try {
+        SceneFileReport report;
+        Scene scene = loadScene(path.toStdString(), &report);
+        document_->resetScene(std::move(scene));
+        matchesFile(path);
+        viewport_->frameAll();
+        for (const std::string& w : report.warnings) std::cerr << "mipgloss: " << w << '\n';
+        if (report.warnings.empty())
+            showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), false);
+        else
+            showMessage(tr("Opened %1 with warnings:\n%2")
+                            .arg(QFileInfo(path).fileName(),
+                                 QString::fromStdString(report.warnings.front())),
+                        false);
+        return true;
+    } catch (const SceneFileError& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+    } catch (const std::exception& e) {
+        showMessage(path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
+    }
+    return false;
+}
+
+bool MainWindow::openRecentFile(const QString& path) {
+    if (!QFileInfo::exists(path)) {
+        RecentFiles::remove(path);
+        updateRecentFileActions();
+        showMessage(tr("%1: no longer exists; removed from Open Recent").arg(path), true);
+        return false;
+    }
+    return openScene(path);
+}
+
+bool MainWindow::save() { return sceneFile_.isEmpty() ? saveAs() : saveScene(sceneFile_); }
+
+bool MainWindow::saveAs() {
+    const QString suggestion =
+        sceneFile_.isEmpty() ? QFileInfo(lastDirectory_, tr("untitled.json")).filePath() : sceneFile_;
+    const QString path = withSuffix(prompts_.saveFileName(suggestion), QStringLiteral("json"));
+    if (path.isEmpty()) return false;
+    return saveScene(path);
+}
+
+bool MainWindow::saveScene(const QString& path) {
+    try {
+        mipgloss::ui::saveScene(document_->scene(), path.toStdString());
+    } catch (const SceneFileError& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    matchesFile(path);
+    showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), false);
+    return true;
+}
+
+void MainWindow::updateRecentFileActions() {
+    const QStringList files = RecentFiles::files();
+    for (std::size_t i = 0; i < recentFileActions_.size(); ++i) {
+        QAction* action = recentFileActions_[i];
+        const bool used = static_cast<qsizetype>(i) < files.size();
+        action->setVisible(used);
+        if (!used) continue;
+        const QString& file = files.at(static_cast<qsizetype>(i));
+        action->setText(tr("&%1 %2").arg(i + 1).arg(QFileInfo(file).fileName()));
+        action->setToolTip(file);
+        action->setStatusTip(file);
+        action->setData(file);
+    }
+    clearRecentAction_->setEnabled(!files.isEmpty());
+    if (recentMenu_) recentMenu_->setEnabled(!files.isEmpty());
+}
+
+int MainWindow::autosaveInterval() const { return autosaveTimer_->interval(); }
+
+void MainWindow::setAutosaveInterval(int milliseconds) { autosaveTimer_->setInterval(milliseconds); }
+
+bool MainWindow::autosaveNow() {
+    if (!isWindowModified()) return false;
+    if (lastAutosaved_ && *lastAutosaved_ == document_->scene()) return false;
+    try {
+        autosave_->write(document_->scene(), sceneFile_);
+    } catch (const FileError& e) {
+        // Once per reason, not every minute.
+        const QString message = tr("Autosave failed: %1").arg(QString::fromStdString(e.what()));
+        if (message != lastAutosaveError_) showMessage(message, true);
+        lastAutosaveError_ = message;
+        return false;
+    }
+    lastAutosaved_ = document_->scene();
+    lastAutosaveError_.clear();
+    return true;
+}
+
+bool MainWindow::offerAutosaveRestore() {
+    const std::vector<Autosave::Leftover> leftovers = Autosave::leftovers();
+    if (leftovers.empty()) return false;
+    const Autosave::Leftover& newest = leftovers.front();
+    const QString work = newest.sceneFile.isEmpty() ? tr("a scene that was never saved")
+                                                    : QFileInfo(newest.sceneFile).fileName();
+    const QString question = tr("mipgloss did not close properly last time. Restore the changes to %1 "
+                                "autosaved %2?")
+                                 .arg(work, QLocale().toString(newest.written, QLocale::ShortFormat));
+    if (!prompts_.restoreAutosave(question)) {
+        Autosave::remove(newest);
+        return false;
+    }
+    if (!maybeSave()) return false;
+    try {
+        SceneFileReport report;
+        Scene scene = loadScene(newest.file.toStdString(), &report);
+        for (const std::string& w : report.warnings) std::cerr << "mipgloss: " << w << '\n';
+        document_->resetScene(std::move(scene));
+    } catch (const SceneFileError& e) {
+        // Kept: the user may still rescue it by hand, and the message says where it is.
+        showMessage(tr("Could not restore the autosave: %1").arg(QString::fromStdString(e.what())), true);
+        return false;
+    }
+    Autosave::remove(newest);
+    sceneFile_ = newest.sceneFile;
+    savedScene_.reset();  // what is on disk is unknown: modified until saved
+    forgetAutosave();
+    updateModified();
+    refreshTitle();
+    viewport_->frameAll();
+    showMessage(tr("Restored the autosaved changes to %1").arg(displayName()), false);
+    return true;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Refreshing widgets from the document and the environment
 
-void MainWindow::refreshEnvironmentWidgets() {
-    const EnvironmentSettings& s = document_->scene().environment;
-    const DisplaySettings& d = document_->scene().display;
-    envSource_->setText(environmentName(s.source));
-    envSource_->setToolTip(QString::fromStdString(s.source));
-
-    const QSignalBlocker b1(builder_), b2(faceSize_), b3(handedness_), b4(rotation_),
-        b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_);
-    builder_->setCurrentText(QString::fromLatin1(builderName(s.builder)));
-    int sizeIndex = faceSize_->findData(s.faceSize);
-    if (sizeIndex < 0) {  // a size from a scene file or the command line
-        faceSize_->addItem(squared(s.faceSize), s.faceSize);
-        sizeIndex = faceSize_->count() - 1;
-    }
-    faceSize_->setCurrentIndex(sizeIndex);
-    handedness_->setCurrentIndex(handedness_->findData(static_cast<int>(s.handedness)));
-    rotation_->setValue(static_cast<int>(std::lround(s.rotationDegrees)));
-    showBackground_->setChecked(d.showBackground);
-    backgroundBlur_->setValue(d.backgroundLambda);
-    backgroundBlur_->setEnabled(d.showBackground);
-    exposure_->setValue(d.exposureEv);
-    toneMap_->setCurrentIndex(toneMap_->findData(static_cast<int>(d.toneMap)));
-    int samplesIndex = samples_->findData(d.samples);
-    if (samplesIndex < 0) {
-        samples_->addItem(QStringLiteral("%1×").arg(d.samples), d.samples);
-        samplesIndex = samples_->count() - 1;
-    }
-    samples_->setCurrentIndex(samplesIndex);
-
-    if (const auto current = environments_->current()) {
-        envInfo_->setText(tr("%1 · %2 · %3 · import %4 s, build %5 s, filtered through level %6 "
-                             "of %7%8")
-                              .arg(environmentName(current->settings.source))
-                              .arg(squared(current->base ? current->base->size() : 0))
-                              .arg(QString::fromLatin1(builderName(current->settings.builder)))
-                              .arg(current->importSeconds, 0, 'f', 2)
-                              .arg(current->buildSeconds, 0, 'f', 2)
-                              .arg(current->lastFilteredLevel)
-                              .arg(current->levelCount() - 1)
-                              .arg(current->irradiance ? tr(", irradiance map") : QString()));
-    } else {
-        envInfo_->setText(tr("loading…"));
-    }
-}
-
 void MainWindow::refreshStatus() {
     const auto current = environments_->current();
     const EnvironmentSettings& s = current ? current->settings : document_->scene().environment;
     QString text = QStringLiteral("%1 · %2 · %3")
-                       .arg(environmentName(s.source))
-                       .arg(squared(current && current->base ? current->base->size() : s.faceSize))
+                       .arg(environmentDisplayName(s.source))
+                       .arg(squaredSize(current && current->base ? current->base->size() : s.faceSize))
                        .arg(QString::fromLatin1(builderName(s.builder)));
     if (!current) text += tr(" (loading)");
     envStatus_->setText(text);
 }
 
-void MainWindow::refreshTitle() {
-    const QString name = sceneFile_.isEmpty() ? tr("Figure 1") : QFileInfo(sceneFile_).fileName();
-    setWindowTitle(QStringLiteral("mipgloss — %1").arg(name));
-}
-
-void MainWindow::syncListSelection() {
-    syncingSelection_ = true;
+void MainWindow::showSelectionInList(int index) {
     QItemSelectionModel* selection = sceneList_->selectionModel();
-    const int row = document_->selected();
-    if (document_->isValidIndex(row))
-        selection->setCurrentIndex(sceneModel_->index(row), QItemSelectionModel::ClearAndSelect);
+    if (document_->isValidIndex(index))
+        selection->setCurrentIndex(sceneModel_->index(index), QItemSelectionModel::ClearAndSelect);
     else
-        selection->clearSelection();
-    syncingSelection_ = false;
+        selection->clear();
 }
 
 void MainWindow::showMessage(const QString& message, bool error, bool log) {
@@ -558,14 +653,6 @@ void MainWindow::showMessage(const QString& message, bool error, bool log) {
 // ---------------------------------------------------------------------------------------------
 // Actions
 
-void MainWindow::newScene() {
-    document_->resetScene(makeFigure1Scene());
-    sceneFile_.clear();
-    refreshTitle();
-    viewport_->frameAll();
-    showMessage(tr("New scene: Figure 1"), false);
-}
-
 bool MainWindow::openEnvironment(const QString& path) {
     const QFileInfo info(path);
     if (!info.exists()) {
@@ -584,73 +671,18 @@ bool MainWindow::openEnvironment(const QString& path) {
 
 void MainWindow::onEnvironmentFailed(const QString& message) {
     showMessage(message, true, /*log=*/false);  // the manager logs its failures
-    // Keep drawing what was there, and make the document say so again, unless the document has
-    // moved on to another environment meanwhile (a newer request is then on its way).
-    EnvironmentSettings settings = document_->scene().environment;
-    if (settings.source != environments_->lastFailure().source) return;
-    if (const auto current = environments_->current()) {
-        settings.source = current->settings.source;
-        settings.layout = current->settings.layout;
-        settings.handedness = current->settings.handedness;
-        settings.faceSize = current->settings.faceSize;
-        settings.builder = current->settings.builder;
-    } else {
-        settings = EnvironmentSettings{};  // nothing drawn yet: the embedded default
-    }
-    document_->setEnvironment(settings);
+    // Keep drawing what was there, and make the document say so again; the step that asked for
+    // the file is withdrawn rather than answered by a step of its own (scene_document.h).
+    EnvironmentSettings fallback;  // nothing drawn yet: the embedded default
+    if (const auto current = environments_->current()) fallback = current->settings;
+    document_->withdrawFailedEnvironment(environments_->lastFailure(), fallback);
 }
 
-void MainWindow::importMeshes(const QStringList& paths) {
-    if (paths.isEmpty()) return;
-    std::int64_t bytes = 0;
-    for (const QString& path : paths) bytes += QFileInfo(path).size();
-    auto loadAll = [paths] {
-        std::vector<ImportResult> results;
-        for (const QString& path : paths) results.push_back(loadOne(path));
-        return results;
-    };
-    if (bytes <= kBackgroundImportBytes) {
-        finishImport(loadAll());
-        return;
-    }
-    ++importsRunning_;
-    progress_->setRange(0, 0);  // busy indicator: OpenMesh reports no progress
-    progress_->setFormat(tr("importing"));
-    progress_->show();
-    showMessage(tr("Importing %n mesh(es)…", nullptr, static_cast<int>(paths.size())), false);
-    auto* watcher = new QFutureWatcher<std::vector<ImportResult>>(this);
-    connect(watcher, &QFutureWatcher<std::vector<ImportResult>>::finished, this, [this, watcher] {
-        --importsRunning_;
-        progress_->setVisible(importing() || environments_->busy());
-        progress_->setRange(0, 100);
-        finishImport(watcher->result());
-        watcher->deleteLater();
-    });
-    watcher->setFuture(QtConcurrent::run(loadAll));
-}
+void MainWindow::importMeshes(const QStringList& paths) { importer_->import(paths); }
 
-void MainWindow::finishImport(const std::vector<ImportResult>& results) {
-    QStringList errors, added;
-    for (const ImportResult& r : results) {
-        for (const std::string& w : r.warnings) std::cerr << "mipgloss: " << w << '\n';
-        if (!r.mesh) {
-            errors << r.error;
-            continue;
-        }
-        SceneObject object;
-        object.name = QFileInfo(r.path).completeBaseName().toStdString();
-        object.meshSource = QFileInfo(r.path).absoluteFilePath().toStdString();
-        object.mesh = r.mesh;
-        Material material;
-        material.lambda = kImportedLambda;
-        material.mode = LookupMode::Reflect;
-        object.transform = placeBeside(document_->scene(), *r.mesh);
-        document_->addObject(std::move(object), material);
-        added << tr("%1 (%2 triangles)")
-                     .arg(QFileInfo(r.path).fileName())
-                     .arg(QLocale().toString(static_cast<qlonglong>(r.mesh->triangleCount())));
-        lastDirectory_ = QFileInfo(r.path).absolutePath();
-    }
+void MainWindow::finishImport(const QStringList& added, const QStringList& errors) {
+    progress_->setVisible(importing() || environments_->busy());
+    progress_->setRange(0, 100);
     if (!added.isEmpty()) viewport_->frameAll();
     if (!errors.isEmpty())
         showMessage(errors.join(QLatin1Char('\n')), true);
@@ -659,52 +691,19 @@ void MainWindow::finishImport(const std::vector<ImportResult>& results) {
     emit importFinished(static_cast<int>(added.size()));
 }
 
-bool MainWindow::openScene(const QString& path) {
-    try {
-        SceneFileReport report;
-        Scene scene = loadScene(path.toStdString(), &report);
-        document_->resetScene(std::move(scene));
-        sceneFile_ = QFileInfo(path).absoluteFilePath();
-        lastDirectory_ = QFileInfo(path).absolutePath();
-        refreshTitle();
-        viewport_->frameAll();
-        for (const std::string& w : report.warnings) std::cerr << "mipgloss: " << w << '\n';
-        if (report.warnings.empty())
-            showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), false);
-        else
-            showMessage(tr("Opened %1 with warnings:\n%2")
-                            .arg(QFileInfo(path).fileName(),
-                                 QString::fromStdString(report.warnings.front())),
-                        false);
-        return true;
-    } catch (const SceneFileError& e) {
-        showMessage(QString::fromStdString(e.what()), true);
-    } catch (const std::exception& e) {
-        showMessage(path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
-    }
-    return false;
-}
-
-bool MainWindow::saveScene(const QString& path) {
-    try {
-        mipgloss::ui::saveScene(document_->scene(), path.toStdString());
-        sceneFile_ = QFileInfo(path).absoluteFilePath();
-        lastDirectory_ = QFileInfo(path).absolutePath();
-        refreshTitle();
-        showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), false);
-        return true;
-    } catch (const SceneFileError& e) {
-        showMessage(QString::fromStdString(e.what()), true);
-    }
-    return false;
-}
-
 bool MainWindow::exportImage(const QString& path) {
     const QImage image = viewport_->grabFramebuffer();
-    if (image.isNull() || !image.save(path)) {
-        showMessage(tr("%1: could not write the image").arg(path), true);
+    QByteArray format = QFileInfo(path).suffix().toUpper().toLatin1();
+    if (format.isEmpty()) format = "PNG";
+    try {
+        if (image.isNull()) throw FileError(path.toStdString(), "the view could not be grabbed");
+        writeFileAtomically(path.toStdString(),
+                            [&](QIODevice& device) { return image.save(&device, format.constData()); });
+    } catch (const FileError& e) {
+        showMessage(QString::fromStdString(e.what()), true);
         return false;
     }
+    lastDirectory_ = QFileInfo(path).absolutePath();
     showMessage(tr("Exported %1 (%2×%3)").arg(QFileInfo(path).fileName()).arg(image.width()).arg(image.height()),
                 false);
     return true;
@@ -722,18 +721,11 @@ void MainWindow::duplicateSelected() {
 // Dialogs
 
 void MainWindow::openSceneDialog() {
+    // Asked before the file dialog, as every other application does.
+    if (!maybeSave()) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), lastDirectory_,
                                                       tr("mipgloss scenes (*.json)"));
-    if (!path.isEmpty()) openScene(path);
-}
-
-void MainWindow::saveSceneDialog() {
-    QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"),
-                                                sceneFile_.isEmpty() ? lastDirectory_ : sceneFile_,
-                                                tr("mipgloss scenes (*.json)"));
-    if (path.isEmpty()) return;
-    if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".json");
-    saveScene(path);
+    if (!path.isEmpty()) loadSceneFile(path);
 }
 
 void MainWindow::openEnvironmentDialog() {
@@ -742,6 +734,12 @@ void MainWindow::openEnvironmentDialog() {
         lastDirectory_,
         tr("Environment images (*.exr *.hdr *.png *.jpg *.jpeg *.tif *.tiff *.pfm);;All files (*)"));
     if (!path.isEmpty()) openEnvironment(path);
+}
+
+void MainWindow::openEnvironmentFolderDialog() {
+    const QString dir =
+        QFileDialog::getExistingDirectory(this, tr("Folder with six face images"), lastDirectory_);
+    if (!dir.isEmpty()) openEnvironment(dir);
 }
 
 void MainWindow::importMeshDialog() {
@@ -754,11 +752,10 @@ void MainWindow::importMeshDialog() {
 }
 
 void MainWindow::exportImageDialog() {
-    QString path = QFileDialog::getSaveFileName(this, tr("Export image"), lastDirectory_,
-                                                tr("PNG images (*.png)"));
-    if (path.isEmpty()) return;
-    if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".png");
-    exportImage(path);
+    const QString path = withSuffix(
+        QFileDialog::getSaveFileName(this, tr("Export image"), lastDirectory_, tr("PNG images (*.png)")),
+        QStringLiteral("png"));
+    if (!path.isEmpty()) exportImage(path);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -3,6 +3,7 @@
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/scene_document.h"
+#include "edit_sessions.h"
 
 #include <QCheckBox>
 #include <QColorDialog>
@@ -17,6 +18,7 @@
 #include <QPushButton>
 #include <QSignalBlocker>
 #include <QSlider>
+#include <QToolTip>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -118,12 +120,35 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     outer->addWidget(editor_);
     outer->addStretch(1);
 
-    // Material.
+    // Object.
+    auto* objectBox = new QGroupBox(tr("Object"), editor_);
+    auto* objectForm = new QFormLayout(objectBox);
+    name_ = new QLineEdit(objectBox);
+    name_->setObjectName(QStringLiteral("nameEdit"));
+    objectForm->addRow(tr("Name"), name_);
+    editorLayout->addWidget(objectBox);
+
+    // Material: which one the object uses, its name, who shares it, and its parameters.
     auto* materialBox = new QGroupBox(tr("Material"), editor_);
     auto* form = new QFormLayout(materialBox);
-    name_ = new QLineEdit(materialBox);
-    name_->setObjectName(QStringLiteral("nameEdit"));
-    form->addRow(tr("Name"), name_);
+    materialChooser_ = new QComboBox(materialBox);
+    materialChooser_->setObjectName(QStringLiteral("materialCombo"));
+    materialChooser_->setToolTip(tr("The scene's materials: choose one to use it for this object"));
+    form->addRow(tr("Uses"), materialChooser_);
+    materialName_ = new QLineEdit(materialBox);
+    materialName_->setObjectName(QStringLiteral("materialNameEdit"));
+    materialName_->setToolTip(tr("The material's name, unique in the scene"));
+    form->addRow(tr("Material name"), materialName_);
+    users_ = new QLabel(materialBox);
+    users_->setObjectName(QStringLiteral("usersLabel"));
+    makeUnique_ = new QPushButton(tr("Make unique"), materialBox);
+    makeUnique_->setObjectName(QStringLiteral("makeUniqueButton"));
+    makeUnique_->setToolTip(tr("Give this object a copy of the material of its own, so editing it "
+                               "leaves the other objects as they are"));
+    auto* usersRow = new QHBoxLayout;
+    usersRow->addWidget(users_, 1);
+    usersRow->addWidget(makeUnique_);
+    form->addRow(QString(), usersRow);
 
     lambdaSlider_ = new QSlider(Qt::Horizontal, materialBox);
     lambdaSlider_->setObjectName(QStringLiteral("lambdaSlider"));
@@ -198,7 +223,14 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     placement->addRow(tr("Scale"), scale_);
     editorLayout->addWidget(placementBox);
 
-    // Edits -> document.
+    // Edits -> document. Each widget's interaction is one undo step (edit_sessions.h).
+    sessions_ = new EditSessions(this);
+    for (QWidget* w : std::initializer_list<QWidget*>{lambdaSlider_, lambdaSpin_, exponentSpin_, scale_})
+        sessions_->track(w);
+    for (int a = 0; a < 3; ++a) {
+        sessions_->track(translation_[a]);
+        sessions_->track(rotation_[a]);
+    }
     connect(name_, &QLineEdit::editingFinished, this, [this] {
         const QString text = name_->text().trimmed();
         if (document_->isValidIndex(document_->selected()) && !text.isEmpty())
@@ -206,12 +238,22 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
         else
             refresh();
     });
-    connect(lambdaSlider_, &QSlider::valueChanged, this,
-            [this](int v) { setLambda(v / static_cast<double>(kSliderStepsPerLambda)); });
-    connect(lambdaSpin_, &QDoubleSpinBox::valueChanged, this, &MaterialPanel::setLambda);
+    connect(materialChooser_, &QComboBox::activated, this, [this](int item) {
+        const auto id = static_cast<MaterialId>(materialChooser_->itemData(item).toUInt());
+        document_->assignMaterial(document_->selected(), id);
+        refreshMaterial();  // an id no longer in the scene changes nothing: show what is
+    });
+    connect(materialName_, &QLineEdit::editingFinished, this, &MaterialPanel::renameMaterial);
+    connect(makeUnique_, &QPushButton::clicked, this,
+            [this] { document_->makeMaterialUnique(document_->selected()); });
+    connect(lambdaSlider_, &QSlider::valueChanged, this, [this](int v) {
+        setLambda(v / static_cast<double>(kSliderStepsPerLambda), lambdaSlider_);
+    });
+    connect(lambdaSpin_, &QDoubleSpinBox::valueChanged, this,
+            [this](double lambda) { setLambda(lambda, lambdaSpin_); });
     connect(exponentSpin_, &QDoubleSpinBox::valueChanged, this, [this](double n) {
         // The top is the mirror, λ = 0 exactly (the formula there gives 0 up to rounding).
-        setLambda(n >= kExponentBoxTop ? 0.0 : exponentToLambda(n));
+        setLambda(n >= kExponentBoxTop ? 0.0 : exponentToLambda(n), exponentSpin_);
     });
     connect(mode_, &QComboBox::currentIndexChanged, this, [this](int) {
         const auto mode = static_cast<LookupMode>(mode_->currentData().toInt());
@@ -225,22 +267,29 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     for (int a = 0; a < 3; ++a) {
         // Each box edits only its own component of the document's value, so the others' rounding
         // (the boxes show 1 to 5 decimals) never leaks into the transform.
-        connect(translation_[a], &QDoubleSpinBox::valueChanged, this, [this, a](double v) {
-            editTransform([a, v](Transform& t) { t.translation[a] = static_cast<float>(v); });
+        QDoubleSpinBox* move = translation_[a];
+        QDoubleSpinBox* turn = rotation_[a];
+        connect(move, &QDoubleSpinBox::valueChanged, this, [this, a, move](double v) {
+            editTransform([a, v](Transform& t) { t.translation[a] = static_cast<float>(v); }, move);
         });
-        connect(rotation_[a], &QDoubleSpinBox::valueChanged, this, [this, a](double v) {
-            editTransform([a, v](Transform& t) { t.rotationDegrees[a] = static_cast<float>(v); });
+        connect(turn, &QDoubleSpinBox::valueChanged, this, [this, a, turn](double v) {
+            editTransform([a, v](Transform& t) { t.rotationDegrees[a] = static_cast<float>(v); }, turn);
         });
     }
     connect(scale_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        editTransform([v](Transform& t) { t.scale = static_cast<float>(v); });
+        editTransform([v](Transform& t) { t.scale = static_cast<float>(v); }, scale_);
     });
 
     // Document -> widgets.
     connect(document_, &SceneDocument::selectionChanged, this, &MaterialPanel::refresh);
     connect(document_, &SceneDocument::objectsChanged, this, &MaterialPanel::refresh);
+    connect(document_, &SceneDocument::materialsChanged, this, &MaterialPanel::refreshMaterials);
     connect(document_, &SceneDocument::materialChanged, this, [this](int index) {
-        if (index == document_->selected()) refreshMaterial();
+        // Another object taking or leaving the selected one's material changes who shares it.
+        if (index == document_->selected())
+            refreshMaterial();
+        else
+            refreshUsers();
     });
     connect(document_, &SceneDocument::transformChanged, this, [this](int index) {
         if (index == document_->selected()) refreshTransform();
@@ -260,13 +309,34 @@ void MaterialPanel::refresh() {
         name_->setText(valid ? QString::fromStdString(document_->object(document_->selected()).name)
                              : QString());
     }
-    refreshMaterial();
+    refreshMaterials();
     refreshTransform();
 }
 
+void MaterialPanel::refreshMaterials() {
+    {
+        const QSignalBlocker block(materialChooser_);
+        materialChooser_->clear();
+        for (const NamedMaterial& m : document_->scene().materials)
+            materialChooser_->addItem(QString::fromStdString(m.name), QVariant::fromValue(m.id));
+    }
+    refreshMaterial();
+}
+
 void MaterialPanel::refreshMaterial() {
-    const bool valid = document_->isValidIndex(document_->selected());
-    const Material m = valid ? document_->materialOf(document_->selected()) : Material{};
+    const int index = document_->selected();
+    const bool valid = document_->isValidIndex(index);
+    const NamedMaterial* named = valid ? document_->namedMaterialOf(index) : nullptr;
+    {
+        const QSignalBlocker b1(materialChooser_), b2(materialName_);
+        materialChooser_->setCurrentIndex(
+            named ? materialChooser_->findData(QVariant::fromValue(named->id)) : -1);
+        materialName_->setText(named ? QString::fromStdString(named->name) : QString());
+    }
+    refreshUsers();
+    materialName_->setEnabled(named != nullptr);
+
+    const Material m = valid ? document_->materialOf(index) : Material{};
     // The document holds only valid λ (scene_document.h); the clamp is for display alone.
     const double lambda = std::clamp(static_cast<double>(m.lambda), 0.0, kMaxLambda);
     const QSignalBlocker b1(lambdaSlider_), b2(lambdaSpin_), b3(exponentSpin_), b4(mode_),
@@ -290,6 +360,15 @@ void MaterialPanel::refreshMaterial() {
                           .arg(color.name()));
 }
 
+void MaterialPanel::refreshUsers() {
+    const int index = document_->selected();
+    const NamedMaterial* named = document_->isValidIndex(index) ? document_->namedMaterialOf(index) : nullptr;
+    const int users = named ? document_->scene().usersOf(named->id) : 0;
+    users_->setText(users > 1 ? tr("used by %n objects", nullptr, users) : QString());
+    users_->setVisible(users > 1);
+    makeUnique_->setEnabled(users > 1);
+}
+
 void MaterialPanel::refreshTransform() {
     const bool valid = document_->isValidIndex(document_->selected());
     const SceneObject* object = valid ? &document_->object(document_->selected()) : nullptr;
@@ -309,32 +388,50 @@ void MaterialPanel::refreshTransform() {
     scale_->setValue(t.scale);
 }
 
-void MaterialPanel::editMaterial(const std::function<void(Material&)>& edit) {
+void MaterialPanel::editMaterial(const std::function<void(Material&)>& edit, const QObject* from) {
     const int index = document_->selected();
     if (!document_->isValidIndex(index)) return;
     Material m = document_->materialOf(index);
     edit(m);
-    document_->setMaterial(index, m);
+    document_->setMaterial(index, m, from ? sessions_->key(from) : 0);
 }
 
-void MaterialPanel::editTransform(const std::function<void(Transform&)>& edit) {
+void MaterialPanel::editTransform(const std::function<void(Transform&)>& edit, const QObject* from) {
     const int index = document_->selected();
     if (!document_->isValidIndex(index)) return;
     Transform t = document_->object(index).transform;
     edit(t);
-    document_->setTransform(index, t);
+    document_->setTransform(index, t, sessions_->key(from));
 }
 
-void MaterialPanel::setLambda(double lambda) {
+void MaterialPanel::setLambda(double lambda, const QObject* from) {
     // The widgets' ranges keep λ in [0, kMaxLambda]; never send the document anything else.
     if (!isValidLambda(lambda)) {
         refreshMaterial();
         return;
     }
-    editMaterial([lambda](Material& m) { m.lambda = static_cast<float>(lambda); });
+    editMaterial([lambda](Material& m) { m.lambda = static_cast<float>(lambda); }, from);
     // A value the document already had (e.g. the same λ reached from a rounded exponent) emits
     // nothing: show the document's λ anyway.
     refreshMaterial();
+}
+
+void MaterialPanel::renameMaterial() {
+    const int index = document_->selected();
+    const NamedMaterial* named = document_->isValidIndex(index) ? document_->namedMaterialOf(index) : nullptr;
+    if (!named) return;
+    const QString text = materialName_->text().trimmed();
+    if (text == QString::fromStdString(named->name)) return;
+    if (!document_->setMaterialName(index, text)) {
+        const std::string problem = materialNameProblem(text.toStdString());
+        QToolTip::showText(materialName_->mapToGlobal(QPoint(0, materialName_->height())),
+                           problem.empty() ? tr("Another material is named \"%1\"").arg(text)
+                                           : QString::fromStdString(problem),
+                           materialName_);
+    }
+    // Refused or made: show the document's name.
+    const QSignalBlocker block(materialName_);
+    materialName_->setText(QString::fromStdString(document_->namedMaterialOf(index)->name));
 }
 
 void MaterialPanel::chooseTint() {

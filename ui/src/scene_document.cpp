@@ -1,10 +1,12 @@
 #include "mipgloss/ui/scene_document.h"
 
 #include "mipgloss/ibl/phong.h"
+#include "scene_commands.h"
 
 #include <QUndoStack>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <utility>
 
@@ -28,6 +30,12 @@ Material sanitized(Material m) {
     return m;
 }
 
+Material admitted(Material m) {
+    m = sanitized(m);
+    m.lambda = admittedLambda(m.lambda);
+    return m;
+}
+
 bool isFinite(const Transform& t) {
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(t.translation[c]) || !std::isfinite(t.rotationDegrees[c])) return false;
@@ -36,15 +44,125 @@ bool isFinite(const Transform& t) {
 
 }  // namespace
 
-namespace {
-Material admitted(Material m) {
-    m = sanitized(m);
-    m.lambda = admittedLambda(m.lambda);
-    return m;
+SceneDocument::MergeKey SceneDocument::newMergeKey() {
+    static std::atomic<MergeKey> last{0};
+    return ++last;
 }
-}  // namespace
 
 SceneDocument::SceneDocument(QObject* parent) : QObject(parent), undoStack_(new QUndoStack(this)) {}
+
+NamedMaterial SceneDocument::freshMaterial(const std::string& name, const Material& material,
+                                           const std::string& libraryEntry) const {
+    NamedMaterial m;
+    m.id = scene_.nextMaterialId();
+    m.name = uniqueName(name,
+                        [this](const std::string& n) { return scene_.findMaterialNamed(n) != nullptr; });
+    m.material = material;
+    m.libraryEntry = libraryEntry;
+    return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Edits: each pushes one command, or nothing when it would change nothing.
+
+void SceneDocument::pushInsert(int index, SceneObject object, std::optional<NamedMaterial> added,
+                               const QString& text) {
+    undoStack_->push(new InsertObjectCommand(this, index, std::move(object), std::move(added), text));
+}
+
+int SceneDocument::addObject(SceneObject object, const Material& material) {
+    NamedMaterial own = freshMaterial(object.name, admitted(material));
+    object.material = own.id;
+    const QString text = tr("Add %1").arg(QString::fromStdString(object.name));
+    pushInsert(objectCount(), std::move(object), std::move(own), text);
+    return objectCount() - 1;
+}
+
+int SceneDocument::addObject(SceneObject object) {
+    if (scene_.findMaterial(object.material)) {
+        const QString text = tr("Add %1").arg(QString::fromStdString(object.name));
+        pushInsert(objectCount(), std::move(object), std::nullopt, text);
+        return objectCount() - 1;
+    }
+    return addObject(std::move(object), Material{});
+}
+
+void SceneDocument::removeObject(int index) {
+    if (!isValidIndex(index)) return;
+    undoStack_->push(new RemoveObjectCommand(this, index));
+}
+
+int SceneDocument::duplicateObject(int index) {
+    if (!isValidIndex(index)) return -1;
+    SceneObject copy = object(index);  // shares the mesh (shared_ptr<const Mesh>) and the material
+    const QString text = tr("Duplicate %1").arg(QString::fromStdString(copy.name));
+    copy.name += " copy";
+    // Beside the original along +x, 1.2 world bounding diameters away, so the two never overlap.
+    copy.transform.translation.x += 1.2f * 2.0f * copy.worldRadius();
+    pushInsert(index + 1, std::move(copy), std::nullopt, text);
+    return index + 1;
+}
+
+void SceneDocument::setMaterial(int index, const Material& material, MergeKey merge) {
+    if (!isValidIndex(index)) return;
+    const NamedMaterial* named = namedMaterialOf(index);
+    if (!named) return;
+    const Material& current = named->material;
+    Material m = sanitized(material);
+    if (!validLambda(m.lambda)) m.lambda = current.lambda;  // refused: the last good λ stays
+    if (current == m) return;
+    undoStack_->push(new SetMaterialCommand(this, named->id, current, m, merge));
+}
+
+void SceneDocument::setTransform(int index, const Transform& transform, MergeKey merge) {
+    if (!isValidIndex(index) || !isFinite(transform)) return;
+    const Transform& current = object(index).transform;
+    if (current == transform) return;
+    undoStack_->push(new SetTransformCommand(this, index, current, transform, merge));
+}
+
+void SceneDocument::setVisible(int index, bool visible) {
+    if (!isValidIndex(index) || object(index).visible == visible) return;
+    undoStack_->push(new SetVisibleCommand(this, index, visible));
+}
+
+void SceneDocument::setName(int index, const QString& name) {
+    if (!isValidIndex(index)) return;
+    const std::string value = name.toStdString();
+    if (object(index).name == value) return;
+    undoStack_->push(new SetObjectNameCommand(this, index, object(index).name, value));
+}
+
+bool SceneDocument::setMaterialName(int index, const QString& name) {
+    if (!isValidIndex(index)) return false;
+    const NamedMaterial* named = namedMaterialOf(index);
+    if (!named) return false;
+    const std::string value = name.trimmed().toStdString();
+    if (value == named->name) return true;
+    if (!materialNameProblem(value).empty()) return false;
+    if (scene_.findMaterialNamed(value)) return false;
+    undoStack_->push(new RenameMaterialCommand(this, named->id, named->name, value));
+    return true;
+}
+
+void SceneDocument::assignMaterial(int index, MaterialId id) {
+    if (!isValidIndex(index) || !scene_.findMaterial(id) || object(index).material == id) return;
+    const QString text = tr("Give %1 the material %2")
+                             .arg(QString::fromStdString(object(index).name),
+                                  QString::fromStdString(scene_.findMaterial(id)->name));
+    undoStack_->push(new AssignMaterialCommand(this, index, object(index).material, id, std::nullopt, text));
+}
+
+MaterialId SceneDocument::makeMaterialUnique(int index) {
+    if (!isValidIndex(index)) return kNoMaterial;
+    const NamedMaterial* named = namedMaterialOf(index);
+    if (!named) return kNoMaterial;
+    if (scene_.usersOf(named->id) <= 1) return named->id;
+    const NamedMaterial copy = freshMaterial(named->name, named->material, named->libraryEntry);
+    const QString text = tr("Give %1 a material of its own").arg(QString::fromStdString(object(index).name));
+    undoStack_->push(new AssignMaterialCommand(this, index, named->id, copy.id, copy, text));
+    return copy.id;
+}
 
 void SceneDocument::applyLibraryMaterial(int index, const LibraryMaterial& entry) {
     if (!isValidIndex(index)) return;
@@ -52,118 +170,59 @@ void SceneDocument::applyLibraryMaterial(int index, const LibraryMaterial& entry
     MaterialId id = kNoMaterial;
     for (const NamedMaterial& m : scene_.materials)
         if (m.libraryEntry == entry.name && m.material == wanted) id = m.id;
-    if (id == kNoMaterial) id = scene_.addMaterial(entry.name, wanted, entry.name);
-    SceneObject& o = scene_.objects[static_cast<std::size_t>(index)];
-    if (o.material == id) return;
-    o.material = id;
-    emit materialChanged(index);
-    emit changed();
+    std::optional<NamedMaterial> added;
+    if (id == kNoMaterial) {
+        added = freshMaterial(entry.name, wanted, entry.name);
+        id = added->id;
+    }
+    if (object(index).material == id) return;
+    const QString text = tr("Apply %1 to %2")
+                             .arg(QString::fromStdString(entry.name),
+                                  QString::fromStdString(object(index).name));
+    undoStack_->push(
+        new AssignMaterialCommand(this, index, object(index).material, id, std::move(added), text));
 }
 
-
-int SceneDocument::addObject(SceneObject object, const Material& material) {
-    object.material = scene_.addMaterial(object.name, admitted(material));
-    return addObject(std::move(object));
-}
-
-int SceneDocument::addObject(SceneObject object) {
-    if (!scene_.findMaterial(object.material)) object.material = scene_.addMaterial(object.name, Material{});
-    scene_.objects.push_back(std::move(object));
-    const int index = objectCount() - 1;
-    emit objectsChanged();
-    emit changed();
-    setSelected(index);
-    return index;
-}
-
-void SceneDocument::removeObject(int index) {
-    if (!isValidIndex(index)) return;
-    scene_.objects.erase(scene_.objects.begin() + index);
-    // The selection follows its object; a removed selection passes to the object that took its
-    // row (or the new last one), so Delete pressed repeatedly empties the list.
-    const int before = selected_;
-    if (selected_ > index)
-        --selected_;
-    else if (selected_ == index)
-        selected_ = std::min(index, objectCount() - 1);
-    emit objectsChanged();
-    emit changed();
-    if (selected_ != before) emit selectionChanged(selected_);
-}
-
-int SceneDocument::duplicateObject(int index) {
-    if (!isValidIndex(index)) return -1;
-    SceneObject copy = object(index);  // shares the mesh: shared_ptr<const Mesh>
-    copy.name += " copy";
-    // Beside the original along +x, 1.2 world bounding diameters away, so the two never overlap.
-    copy.transform.translation.x += 1.2f * 2.0f * copy.worldRadius();
-    const int newIndex = index + 1;
-    scene_.objects.insert(scene_.objects.begin() + newIndex, std::move(copy));
-    if (selected_ >= newIndex) ++selected_;  // keeps the index valid until setSelected below
-    emit objectsChanged();
-    emit changed();
-    setSelected(newIndex);
-    return newIndex;
-}
-
-void SceneDocument::setMaterial(int index, const Material& material) {
-    if (!isValidIndex(index)) return;
-    const MaterialId id = scene_.objects[static_cast<std::size_t>(index)].material;
-    NamedMaterial* named = scene_.findMaterial(id);
-    if (!named) return;
-    Material& current = named->material;
-    Material m = sanitized(material);
-    if (!validLambda(m.lambda)) m.lambda = current.lambda;  // refused: the last good λ stays
-    if (current == m) return;
-    current = m;
-    for (int i = 0; i < objectCount(); ++i)
-        if (object(i).material == id) emit materialChanged(i);
-    emit changed();
-}
-
-void SceneDocument::setTransform(int index, const Transform& transform) {
-    if (!isValidIndex(index) || !isFinite(transform)) return;
-    Transform& current = scene_.objects[static_cast<std::size_t>(index)].transform;
-    if (current == transform) return;
-    current = transform;
-    emit transformChanged(index);
-    emit changed();
-}
-
-void SceneDocument::setVisible(int index, bool visible) {
-    if (!isValidIndex(index)) return;
-    bool& current = scene_.objects[static_cast<std::size_t>(index)].visible;
-    if (current == visible) return;
-    current = visible;
-    emit objectChanged(index);
-    emit changed();
-}
-
-void SceneDocument::setName(int index, const QString& name) {
-    if (!isValidIndex(index)) return;
-    std::string& current = scene_.objects[static_cast<std::size_t>(index)].name;
-    const std::string value = name.toStdString();
-    if (current == value) return;
-    current = value;
-    emit objectChanged(index);
-    emit changed();
-}
-
-void SceneDocument::setEnvironment(const EnvironmentSettings& settings) {
+void SceneDocument::setEnvironment(const EnvironmentSettings& settings, MergeKey merge) {
     if (scene_.environment == settings) return;
-    scene_.environment = settings;
-    emit environmentChanged();
-    emit changed();
+    undoStack_->push(new SetEnvironmentCommand(this, scene_.environment, settings, merge));
 }
 
-void SceneDocument::setDisplay(const DisplaySettings& settings) {
+void SceneDocument::setDisplay(const DisplaySettings& settings, MergeKey merge) {
     DisplaySettings d = settings;
     if (!validLambda(d.backgroundLambda))
         d.backgroundLambda = scene_.display.backgroundLambda;  // refused: the last good λ stays
     if (scene_.display == d) return;
-    scene_.display = d;
-    emit displayChanged();
-    emit changed();
+    undoStack_->push(new SetDisplayCommand(this, scene_.display, d, merge));
+}
+
+void SceneDocument::withdrawFailedEnvironment(const EnvironmentSettings& failed,
+                                              const EnvironmentSettings& fallback) {
+    if (!sameEnvironmentRequest(scene_.environment, failed)) return;  // moved on meanwhile
+    auto asksForFailed = [&](const QUndoCommand* command) {
+        const auto* step = dynamic_cast<const SetEnvironmentCommand*>(command);
+        return step && !step->isObsolete() && sameEnvironmentRequest(step->after(), failed);
+    };
+    // The newest steps that asked for it: undone (their undo puts back what was asked before) and
+    // dropped from the stack.
+    while (undoStack_->index() > 0) {
+        const QUndoCommand* latest = undoStack_->command(undoStack_->index() - 1);
+        if (!asksForFailed(latest)) break;
+        // The stack's own command; command() only hands it out const.
+        static_cast<SetEnvironmentCommand*>(const_cast<QUndoCommand*>(latest))->withdraw();
+        const int index = undoStack_->index();
+        undoStack_->undo();
+        if (undoStack_->index() == index) break;  // a macro is open: the stack refuses to undo
+    }
+    if (!sameEnvironmentRequest(scene_.environment, failed)) return;
+    // Under later edits: put the fallback back as it is, and let Undo pass over the old steps.
+    for (int i = 0; i < undoStack_->index(); ++i)
+        if (asksForFailed(undoStack_->command(i)))
+            const_cast<QUndoCommand*>(undoStack_->command(i))->setObsolete(true);
+    EnvironmentSettings settings = fallback;
+    settings.rotationDegrees = scene_.environment.rotationDegrees;
+    replaceEnvironment(settings);
+    notifyChanged();
 }
 
 void SceneDocument::resetScene(Scene scene) {
@@ -171,12 +230,16 @@ void SceneDocument::resetScene(Scene scene) {
     for (SceneObject& o : scene.objects)
         if (!scene.findMaterial(o.material)) o.material = scene.addMaterial(o.name, Material{});
     scene.display.backgroundLambda = admittedLambda(scene.display.backgroundLambda);
+    undoStack_->clear();
     const bool environmentDiffers = !(scene_.environment == scene.environment);
     const bool displayDiffers = !(scene_.display == scene.display);
     const int before = selected_;
+    emit aboutToReset();
     scene_ = std::move(scene);
     selected_ = -1;
+    emit sceneReset();
     emit objectsChanged();
+    emit materialsChanged();
     if (environmentDiffers) emit environmentChanged();
     if (displayDiffers) emit displayChanged();
     emit changed();
@@ -188,6 +251,100 @@ void SceneDocument::setSelected(int index) {
     if (selected_ == index) return;
     selected_ = index;
     emit selectionChanged(selected_);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The commands' steps
+
+void SceneDocument::insertMaterialAt(std::size_t position, const NamedMaterial& material) {
+    position = std::min(position, scene_.materials.size());
+    scene_.materials.insert(scene_.materials.begin() + static_cast<std::ptrdiff_t>(position), material);
+    emit materialsChanged();
+}
+
+void SceneDocument::removeMaterial(MaterialId id) {
+    const auto it = std::find_if(scene_.materials.begin(), scene_.materials.end(),
+                                 [id](const NamedMaterial& m) { return m.id == id; });
+    if (it == scene_.materials.end()) return;
+    scene_.materials.erase(it);
+    emit materialsChanged();
+}
+
+void SceneDocument::replaceMaterial(MaterialId id, const Material& material) {
+    NamedMaterial* named = scene_.findMaterial(id);
+    if (!named) return;
+    named->material = material;
+    for (int i = 0; i < objectCount(); ++i)
+        if (object(i).material == id) emit materialChanged(i);
+}
+
+void SceneDocument::renameMaterial(MaterialId id, const std::string& name) {
+    NamedMaterial* named = scene_.findMaterial(id);
+    if (!named) return;
+    named->name = name;
+    emit materialsChanged();
+    for (int i = 0; i < objectCount(); ++i)
+        if (object(i).material == id) emit materialChanged(i);
+}
+
+void SceneDocument::setObjectMaterial(int index, MaterialId id) {
+    if (!isValidIndex(index)) return;
+    scene_.objects[static_cast<std::size_t>(index)].material = id;
+    emit materialChanged(index);
+}
+
+void SceneDocument::replaceTransform(int index, const Transform& transform) {
+    if (!isValidIndex(index)) return;
+    scene_.objects[static_cast<std::size_t>(index)].transform = transform;
+    emit transformChanged(index);
+}
+
+void SceneDocument::replaceName(int index, const std::string& name) {
+    if (!isValidIndex(index)) return;
+    scene_.objects[static_cast<std::size_t>(index)].name = name;
+    emit objectChanged(index);
+}
+
+void SceneDocument::replaceVisible(int index, bool visible) {
+    if (!isValidIndex(index)) return;
+    scene_.objects[static_cast<std::size_t>(index)].visible = visible;
+    emit objectChanged(index);
+}
+
+void SceneDocument::insertObject(int index, SceneObject object) {
+    index = std::clamp(index, 0, objectCount());
+    emit objectAboutToBeInserted(index);
+    scene_.objects.insert(scene_.objects.begin() + index, std::move(object));
+    const int before = selected_;
+    if (selected_ >= index) ++selected_;  // the selection stays with its object
+    emit objectInserted(index);
+    emit objectsChanged();
+    if (selected_ != before) emit selectionChanged(selected_);
+}
+
+void SceneDocument::takeObject(int index) {
+    if (!isValidIndex(index)) return;
+    // A selected object hands the selection on first, to the object that will take its row (or
+    // the new last one), so Delete pressed repeatedly empties the list and no view loses its
+    // current row in the middle of the removal.
+    if (selected_ == index) setSelected(index + 1 < objectCount() ? index + 1 : index - 1);
+    emit objectAboutToBeRemoved(index);
+    scene_.objects.erase(scene_.objects.begin() + index);
+    const int before = selected_;
+    if (selected_ > index) --selected_;
+    emit objectRemoved(index);
+    emit objectsChanged();
+    if (selected_ != before) emit selectionChanged(selected_);
+}
+
+void SceneDocument::replaceEnvironment(const EnvironmentSettings& settings) {
+    scene_.environment = settings;
+    emit environmentChanged();
+}
+
+void SceneDocument::replaceDisplay(const DisplaySettings& settings) {
+    scene_.display = settings;
+    emit displayChanged();
 }
 
 }  // namespace mipgloss::ui

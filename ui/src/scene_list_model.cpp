@@ -1,19 +1,25 @@
 #include "mipgloss/ui/scene_list_model.h"
 
+#include "mipgloss/ui/material_mime.h"
 #include "mipgloss/ui/scene_document.h"
 
+#include <QApplication>
 #include <QLocale>
+#include <QMimeData>
+#include <QPainter>
 
 namespace mipgloss::ui {
 
 SceneListModel::SceneListModel(SceneDocument* document, QObject* parent)
     : QAbstractListModel(parent), document_(document) {
-    // Any change of the object list resets the model: rows are cheap and the list is short, and
-    // a reset is the only notification that is right for every add/remove/duplicate/replace.
-    connect(document_, &SceneDocument::objectsChanged, this, [this] {
-        beginResetModel();
-        endResetModel();
-    });
+    connect(document_, &SceneDocument::objectAboutToBeInserted, this,
+            [this](int row) { beginInsertRows({}, row, row); });
+    connect(document_, &SceneDocument::objectInserted, this, [this](int) { endInsertRows(); });
+    connect(document_, &SceneDocument::objectAboutToBeRemoved, this,
+            [this](int row) { beginRemoveRows({}, row, row); });
+    connect(document_, &SceneDocument::objectRemoved, this, [this](int) { endRemoveRows(); });
+    connect(document_, &SceneDocument::aboutToReset, this, [this] { beginResetModel(); });
+    connect(document_, &SceneDocument::sceneReset, this, [this] { endResetModel(); });
     connect(document_, &SceneDocument::objectChanged, this, &SceneListModel::rowChanged);
     connect(document_, &SceneDocument::materialChanged, this, &SceneListModel::rowChanged);
 }
@@ -26,15 +32,18 @@ QVariant SceneListModel::data(const QModelIndex& index, int role) const {
     if (!checkIndex(index, CheckIndexOption::IndexIsValid | CheckIndexOption::ParentIsInvalid))
         return {};
     const SceneObject& object = document_->object(index.row());
+    const NamedMaterial* named = document_->namedMaterialOf(index.row());
     switch (role) {
         case Qt::DisplayRole:
         case Qt::EditRole: return QString::fromStdString(object.name);
+        case MaterialNameRole: return named ? QString::fromStdString(named->name) : QString();
         case Qt::CheckStateRole: return object.visible ? Qt::Checked : Qt::Unchecked;
         case Qt::ToolTipRole: {
             const Material& m = document_->materialOf(index.row());
             const qlonglong triangles =
                 object.mesh ? static_cast<qlonglong>(object.mesh->triangleCount()) : 0;
-            QString text = tr("λ %1 · %2").arg(m.lambda, 0, 'f', 2).arg(lookupModeName(m.mode));
+            QString text = named ? QString::fromStdString(named->name) + QStringLiteral(" · ") : QString();
+            text += tr("λ %1 · %2").arg(m.lambda, 0, 'f', 2).arg(lookupModeName(m.mode));
             if (m.mode == LookupMode::Normal && m.useIrradiance) text += tr(" (irradiance)");
             text += tr(" · %1 triangles").arg(QLocale().toString(triangles));
             return text;
@@ -64,13 +73,64 @@ bool SceneListModel::setData(const QModelIndex& index, const QVariant& value, in
 Qt::ItemFlags SceneListModel::flags(const QModelIndex& index) const {
     if (!index.isValid()) return Qt::NoItemFlags;
     return Qt::ItemIsSelectable | Qt::ItemIsEnabled | Qt::ItemIsUserCheckable |
-           Qt::ItemIsEditable | Qt::ItemNeverHasChildren;
+           Qt::ItemIsEditable | Qt::ItemNeverHasChildren | Qt::ItemIsDropEnabled;
+}
+
+QStringList SceneListModel::mimeTypes() const { return {QString::fromLatin1(kMaterialMimeType)}; }
+
+Qt::DropActions SceneListModel::supportedDropActions() const { return Qt::CopyAction; }
+
+bool SceneListModel::canDropMimeData(const QMimeData* data, Qt::DropAction, int, int,
+                                     const QModelIndex& parent) const {
+    // Only onto an object: between rows there is nothing to apply it to.
+    return parent.isValid() && parent.model() == this && data &&
+           data->hasFormat(QString::fromLatin1(kMaterialMimeType));
+}
+
+bool SceneListModel::dropMimeData(const QMimeData* data, Qt::DropAction action, int row, int column,
+                                  const QModelIndex& parent) {
+    if (!canDropMimeData(data, action, row, column, parent)) return false;
+    const std::optional<LibraryMaterial> entry = materialFromMimeData(data);
+    if (!entry) return false;
+    document_->applyLibraryMaterial(parent.row(), *entry);
+    return true;
 }
 
 void SceneListModel::rowChanged(int row) {
     if (row < 0 || row >= rowCount()) return;
     const QModelIndex i = index(row);
     emit dataChanged(i, i);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+constexpr int kMaterialGap = 12;  // pixels between the object's name and its material's
+}
+
+void SceneListDelegate::paint(QPainter* painter, const QStyleOptionViewItem& option,
+                              const QModelIndex& index) const {
+    QStyledItemDelegate::paint(painter, option, index);
+    const QString material = index.data(SceneListModel::MaterialNameRole).toString();
+    if (material.isEmpty()) return;
+    QStyleOptionViewItem opt = option;
+    initStyleOption(&opt, index);
+    const QWidget* widget = option.widget;
+    const QStyle* style = widget ? widget->style() : QApplication::style();
+    const QRect textRect = style->subElementRect(QStyle::SE_ItemViewItemText, &opt, widget);
+    const int nameWidth = opt.fontMetrics.horizontalAdvance(opt.text);
+    QRect materialRect = textRect.adjusted(nameWidth + kMaterialGap, 0, 0, 0);
+    if (materialRect.width() <= opt.fontMetrics.averageCharWidth()) return;
+    const bool selected = opt.state & QStyle::State_Selected;
+    painter->save();
+    QColor colour =
+        opt.palette.color(QPalette::Disabled, selected ? QPalette::HighlightedText : QPalette::Text);
+    if (selected) colour.setAlphaF(0.7f);
+    painter->setPen(colour);
+    painter->setFont(opt.font);
+    painter->drawText(materialRect, Qt::AlignLeft | Qt::AlignVCenter,
+                      opt.fontMetrics.elidedText(material, Qt::ElideRight, materialRect.width()));
+    painter->restore();
 }
 
 }  // namespace mipgloss::ui

@@ -1,9 +1,12 @@
 #include "mipgloss/ui/viewport.h"
 
 #include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/material_mime.h"
 #include "mipgloss/ui/scene_document.h"
 
+#include <QDropEvent>
 #include <QKeyEvent>
+#include <QMimeData>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
@@ -22,6 +25,7 @@ Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QW
       renderer_(std::make_unique<Renderer>()) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(320, 240);
+    setAcceptDrops(true);  // library materials; other drags (files) pass on to the window
     // On demand: any change that can alter the picture asks for one frame.
     connect(document_, &SceneDocument::changed, this, qOverload<>(&QWidget::update));
     connect(environments_, &EnvironmentManager::environmentReady, this, qOverload<>(&QWidget::update));
@@ -183,6 +187,43 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
             break;
         default: QOpenGLWidget::keyPressEvent(event);
     }
+}
+
+}  // namespace mipgloss::ui
+
+namespace mipgloss::ui {
+
+namespace {
+bool carriesMaterial(const QMimeData* mime) {
+    return mime && mime->hasFormat(QString::fromLatin1(kMaterialMimeType));
+}
+}  // namespace
+
+void Viewport::dragEnterEvent(QDragEnterEvent* event) {
+    if (carriesMaterial(event->mimeData()))
+        event->acceptProposedAction();
+    else
+        event->ignore();  // files: the window opens them
+}
+
+void Viewport::dragMoveEvent(QDragMoveEvent* event) {
+    // Only over an object does a drop do something; elsewhere the cursor says so.
+    if (carriesMaterial(event->mimeData()) && pickObject(event->position().toPoint()) >= 0)
+        event->acceptProposedAction();
+    else
+        event->ignore();
+}
+
+void Viewport::dropEvent(QDropEvent* event) {
+    const std::optional<LibraryMaterial> entry = materialFromMimeData(event->mimeData());
+    const int index = entry ? pickObject(event->position().toPoint()) : -1;
+    if (index < 0) {
+        event->ignore();
+        return;
+    }
+    document_->applyLibraryMaterial(index, *entry);
+    document_->setSelected(index);
+    event->acceptProposedAction();
 }
 
 }  // namespace mipgloss::ui

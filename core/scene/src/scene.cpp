@@ -72,13 +72,14 @@ Scene makeFigure1Scene() {
     scene.display.backgroundLambda = 2.0f;
     struct Entry {
         const char* name;
+        const char* material;
         float lambda;
         LookupMode mode;
     };
-    const Entry entries[] = {{"mirror (λ 0)", 0.0f, LookupMode::Reflect},
-                             {"glossy (λ 3.5)", 3.5f, LookupMode::Reflect},
-                             {"glossy (λ 5)", 5.0f, LookupMode::Reflect},
-                             {"diffuse (λ 7, normal)", 7.0f, LookupMode::Normal}};
+    const Entry entries[] = {{"mirror (λ 0)", "Chrome", 0.0f, LookupMode::Reflect},
+                             {"glossy (λ 3.5)", "Polished", 3.5f, LookupMode::Reflect},
+                             {"glossy (λ 5)", "Satin", 5.0f, LookupMode::Reflect},
+                             {"diffuse (λ 7, normal)", "Matte (normal)", 7.0f, LookupMode::Normal}};
     // In a row along x, spaced by the teapot's width plus a gap, centred on the origin.
     const Bounds& b = teapot->bounds;
     const float spacing = 1.15f * (b.max.x - b.min.x);
@@ -92,7 +93,8 @@ Scene makeFigure1Scene() {
         Material material;
         material.lambda = entries[i].lambda;
         material.mode = entries[i].mode;
-        scene.addObject(std::move(object), material);
+        object.material = scene.addMaterial(entries[i].material, material);
+        scene.objects.push_back(std::move(object));
     }
     return scene;
 }

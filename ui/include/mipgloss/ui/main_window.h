@@ -1,44 +1,66 @@
 // The desktop window: the viewport in the middle, docks for the scene list, the material and the
-// environment, menus, drag and drop, and a status bar with the environment and its progress.
+// environment (environment_panel.h), menus, drag and drop, and a status bar with the environment
+// and its progress. Built the way Qt's application example is: the actions are members made in
+// createActions(), menus are made from them in createMenus(), docks in createDocks().
+//
+// Editing. Every scene edit is one step on the document's undo stack (scene_document.h); Edit →
+// Undo and Redo (the platform's shortcuts) name it: "Undo Change λ of Gold".
+//
+// Files. File → New, Open, Open Recent (recent_files.h), Save (Ctrl+S; a scene never saved asks
+// for a file, as Save As does), Save As, Quit. The title is "<file name>[*] — mipgloss" ("Untitled"
+// before the first save), with the platform's modified mark. The scene is modified when it differs
+// (Scene::operator==) from the one last opened, saved or made new; so undoing back to the saved
+// state clears the mark, and library edits, which share the undo stack, never set it. New, Open,
+// Quit and closing the window ask first when it is modified: Save, Discard or Cancel.
+//
+// Autosave (autosave.h). While the scene is modified it is written every autosaveInterval() (a
+// minute) to the user's data folder; saving, New, Open and a clean exit remove it. A file left by a
+// session that did not end cleanly is offered for restoring by offerAutosaveRestore() (the
+// application calls it at start): the restored scene keeps the file name it had (or none) and is
+// marked modified.
 //
 // Errors a user can cause (a broken mesh, environment or scene file) never change the scene: a
 // failed mesh adds nothing, a failed environment leaves the old one drawn (and the document's
-// environment settings are put back to it), a failed scene file leaves the open scene. Each is
-// shown in a dismissable banner above the viewport, kept in lastMessage() and logged to stderr.
+// environment settings are put back to it, without an undo step: the step that asked for the file
+// is withdrawn, SceneDocument::withdrawFailedEnvironment), a failed scene file leaves the open
+// scene. Each is shown in a dismissable banner above the viewport, kept in lastMessage() and
+// logged to stderr. Every file the window writes (scenes, autosaves, exported images) is written
+// atomically (atomic_file.h).
 //
-// Imported meshes (importMeshes): loaded off the UI thread when the files are large
-// (kBackgroundImportBytes in all), otherwise at once; importFinished() follows either way. Each
-// becomes an object named after the file stem with λ = 3 looked up by the reflection vector (a
-// plainly glossy start, well inside the filtered levels of any chain of 16² or more), placed by
-// this rule:
-//   - size: R = the median world radius of the visible objects. A mesh whose radius r is more than
-//     4× larger or smaller than R is scaled by R / r (so a 0.2-unit scan and a 120-unit one both
-//     sit beside teapots); otherwise it keeps its own size. With no visible objects it keeps it.
-//   - place: to the right (+x) of the visible scene's bounds with a gap of 0.2 R (0.2 r when
-//     alone), its centre at the height and depth of the bounds' centre.
-// Then the view frames all.
+// Imported meshes: mesh_importer.h (loading off the UI thread, the placement rule); one import is
+// one undo step, and the view frames all afterwards.
 #pragma once
+
+#include "mipgloss/scene/scene.h"
+#include "mipgloss/ui/mesh_importer.h"
+#include "mipgloss/ui/recent_files.h"
 
 #include <QMainWindow>
 #include <QString>
 #include <QStringList>
 
+#include <array>
 #include <cstdint>
-#include <vector>
+#include <functional>
+#include <memory>
+#include <optional>
 
-class QComboBox;
-class QCheckBox;
-class QDoubleSpinBox;
+class QAction;
 class QLabel;
 class QListView;
+class QMenu;
 class QProgressBar;
-class QSlider;
+class QTimer;
 class QWidget;
 
 namespace mipgloss::ui {
 
+class Autosave;
 class SceneDocument;
+class LibraryDocument;
+class LibraryDock;
 class EnvironmentManager;
+class EnvironmentPanel;
 class Viewport;
 class MaterialPanel;
 class SceneListModel;
@@ -49,19 +71,21 @@ public:
     explicit MainWindow(QWidget* parent = nullptr);
     ~MainWindow() override;
 
-    // Mesh imports whose files add up to more than this run on a worker thread.
-    static constexpr std::int64_t kBackgroundImportBytes = 4 * 1024 * 1024;
-    // The λ an imported object starts with (reflect mode).
-    static constexpr float kImportedLambda = 3.0f;
-
-    // One loaded mesh file (or its error), handed from the loader to finishImport.
-    struct ImportResult;
+    static constexpr std::int64_t kBackgroundImportBytes = MeshImporter::kBackgroundImportBytes;
+    static constexpr float kImportedLambda = MeshImporter::kImportedLambda;
+    static constexpr int kDefaultAutosaveIntervalMs = 60 * 1000;
 
     SceneDocument* document() const { return document_; }
+    // The user's material library (library_document.h), opened from defaultLibraryPath(), and its
+    // dock. Library edits share the document's undo stack but never mark the scene modified.
+    LibraryDocument* library() const { return library_; }
+    LibraryDock* libraryDock() const { return libraryDock_; }
     EnvironmentManager* environments() const { return environments_; }
     Viewport* viewport() const { return viewport_; }
     MaterialPanel* materialPanel() const { return materialPanel_; }
+    EnvironmentPanel* environmentPanel() const { return environmentPanel_; }
     QListView* sceneList() const { return sceneList_; }
+    MeshImporter* importer() const { return importer_; }
 
     // The last message shown (error or information) and whether it was an error.
     const QString& lastMessage() const { return lastMessage_; }
@@ -69,17 +93,48 @@ public:
     // The scene file the document was last opened from or saved to; empty for a new scene.
     const QString& sceneFile() const { return sceneFile_; }
     // True while a background mesh import runs.
-    bool importing() const { return importsRunning_ > 0; }
+    bool importing() const { return importer_->busy(); }
+
+    // The questions the window asks the user. The defaults are dialogs (QMessageBox with the
+    // object name "saveChangesBox" or "restoreAutosaveBox", QFileDialog); tests may replace them.
+    enum class SaveChoice { Save, Discard, Cancel };
+    struct Prompts {
+        // Unsaved changes to the scene called `name` are about to be dropped.
+        std::function<SaveChoice(const QString& name)> saveChanges;
+        // The file to save to (Save As, or Save of a scene never saved); empty cancels.
+        std::function<QString(const QString& suggestion)> saveFileName;
+        // An autosave a crashed session left: restore it (true) or discard it (false)?
+        std::function<bool(const QString& question)> restoreAutosave;
+    };
+    Prompts& prompts() { return prompts_; }
+
+    int autosaveInterval() const;
+    void setAutosaveInterval(int milliseconds);
+    // This session's autosave (its file exists while modified work is autosaved).
+    const Autosave& autosave() const { return *autosave_; }
 
 public slots:
-    void newScene();
+    // New (Figure 1), Open, Save, Save As and opening a recent file. New and Open ask first when
+    // the scene is modified (false: cancelled, or the file could not be read).
+    bool newScene();
+    bool openScene(const QString& path);
+    bool openRecentFile(const QString& path);  // a file gone from disk leaves Open Recent
+    bool save();
+    bool saveAs();
+    // Writes the scene to `path` and makes it the scene's file; asks nothing.
+    bool saveScene(const QString& path);
+    // Offers the newest autosave a crashed session left behind (Prompts::restoreAutosave); true
+    // when one was restored.
+    bool offerAutosaveRestore();
+    // Writes the autosave now if the scene is modified and changed since the last one (the timer
+    // calls it); false when there was nothing to write or the write failed.
+    bool autosaveNow();
+
     // Sets the document's environment source to `path` (a file, a face of a six-face set or a
     // directory); the EnvironmentManager imports it. False (with a message) if it does not exist;
     // a file that exists but cannot be read fails later through EnvironmentManager::failed.
     bool openEnvironment(const QString& path);
     void importMeshes(const QStringList& paths);
-    bool openScene(const QString& path);
-    bool saveScene(const QString& path);
     bool exportImage(const QString& path);
     // What dropping files does, also for command-line arguments: a .json scene opens (first),
     // mesh files import, an image or a folder becomes the environment (the last one given).
@@ -94,32 +149,50 @@ signals:
     void importFinished(int added);
 
 protected:
+    void closeEvent(QCloseEvent* event) override;
     void dragEnterEvent(QDragEnterEvent* event) override;
     void dropEvent(QDropEvent* event) override;
 
 private:
-    void buildMenus();
-    QWidget* buildSceneDock();
-    QWidget* buildEnvironmentDock();
-    void buildStatusBar();
-    void refreshEnvironmentWidgets();
-    void refreshStatus();
+    void createCentre();
+    void createActions();
+    void createDocks();
+    void createMenus();
+    void createStatusBar();
+    QWidget* createSceneDock();
+
+    // Files.
+    bool maybeSave();
+    bool loadSceneFile(const QString& path);  // Open without asking
+    void markSaved();       // the document's scene is the saved one
+    // The document's scene is what `path` holds now (opened or saved): its file, saved state,
+    // recent files and title.
+    void matchesFile(const QString& path);
+    void updateModified();  // the title's mark from the scene
+    void forgetAutosave();  // the work is safe or knowingly dropped: no autosave to keep
+    void updateRecentFileActions();
+    QString displayName() const;
     void refreshTitle();
-    void syncListSelection();
+    void setDefaultPrompts();
+
+    void refreshStatus();
+    void showSelectionInList(int index);
     void showMessage(const QString& message, bool error, bool log = true);
-    void finishImport(const std::vector<ImportResult>& results);
+    void finishImport(const QStringList& added, const QStringList& errors);
     void onEnvironmentFailed(const QString& message);
 
     void openSceneDialog();
-    void saveSceneDialog();
     void openEnvironmentDialog();
+    void openEnvironmentFolderDialog();
     void importMeshDialog();
     void exportImageDialog();
 
     SceneDocument* document_ = nullptr;
     EnvironmentManager* environments_ = nullptr;
+    MeshImporter* importer_ = nullptr;
     Viewport* viewport_ = nullptr;
     MaterialPanel* materialPanel_ = nullptr;
+    EnvironmentPanel* environmentPanel_ = nullptr;
     SceneListModel* sceneModel_ = nullptr;
     QListView* sceneList_ = nullptr;
 
@@ -128,25 +201,40 @@ private:
     QLabel* envStatus_ = nullptr;
     QProgressBar* progress_ = nullptr;
 
-    // Environment dock.
-    QLabel* envSource_ = nullptr;
-    QLabel* envInfo_ = nullptr;
-    QComboBox* builder_ = nullptr;
-    QComboBox* faceSize_ = nullptr;
-    QComboBox* handedness_ = nullptr;
-    QSlider* rotation_ = nullptr;
-    QCheckBox* showBackground_ = nullptr;
-    QDoubleSpinBox* backgroundBlur_ = nullptr;
-    QDoubleSpinBox* exposure_ = nullptr;
-    QComboBox* toneMap_ = nullptr;
-    QComboBox* samples_ = nullptr;
+    // Actions (createActions), in menu order.
+    LibraryDocument* library_ = nullptr;
+    LibraryDock* libraryDock_ = nullptr;
+    QAction* newAction_ = nullptr;
+    QAction* openAction_ = nullptr;
+    std::array<QAction*, kMaxRecentFiles> recentFileActions_{};
+    QAction* clearRecentAction_ = nullptr;
+    QAction* saveAction_ = nullptr;
+    QAction* saveAsAction_ = nullptr;
+    QAction* openEnvironmentAction_ = nullptr;
+    QAction* openEnvironmentFolderAction_ = nullptr;
+    QAction* importMeshAction_ = nullptr;
+    QAction* exportImageAction_ = nullptr;
+    QAction* quitAction_ = nullptr;
+    QAction* undoAction_ = nullptr;
+    QAction* redoAction_ = nullptr;
+    QAction* duplicateAction_ = nullptr;
+    QAction* removeAction_ = nullptr;
+    QAction* frameAllAction_ = nullptr;
+    QAction* showCountersAction_ = nullptr;
+    QMenu* recentMenu_ = nullptr;
 
+    Prompts prompts_;
     QString lastMessage_;
     bool lastMessageIsError_ = false;
     QString sceneFile_;
     QString lastDirectory_;
-    int importsRunning_ = 0;
-    bool syncingSelection_ = false;
+    // The scene as last opened, saved or made new; none for a restored autosave (whose saved
+    // state is unknown, so it stays modified until saved).
+    std::optional<Scene> savedScene_;
+    std::unique_ptr<Autosave> autosave_;
+    QTimer* autosaveTimer_ = nullptr;
+    std::optional<Scene> lastAutosaved_;
+    QString lastAutosaveError_;
 };
 
 }  // namespace mipgloss::ui

@@ -1,4 +1,11 @@
-// Edits the selected object's material and placement through the SceneDocument.
+// Edits the selected object's name, material and placement through the SceneDocument.
+//
+// Materials are named and may be shared (scene.h): the panel edits the material the selected
+// object uses, so every object sharing it changes; a line says how many objects use it ("used by
+// 3 objects", shown only when shared), and "Make unique" gives the selected object a copy of its
+// own. The material combo lists the scene's materials and assigns the chosen one to the object;
+// the material's name is edited beside it (a name another material has is refused, and the box
+// shows the material's name again).
 //
 // λ is shown three ways, kept in step: a slider (steps of 1/20), a spin box, and the equivalent
 // Phong exponent n = lambdaToExponent(λ) (phong.h). λ has one meaning whatever the environment:
@@ -12,9 +19,11 @@
 //
 // The spin boxes commit on Enter, focus loss or arrow steps (no keyboard tracking): a half-typed
 // number never reaches the document. Widgets are refreshed from the document with their signals
-// blocked, so a refresh never writes back.
+// blocked, so a refresh never writes back. Every edit is one undo step per interaction
+// (edit_sessions.h): a drag of the λ slider, or the steps made in one box while it has the focus.
 //
-// Object names for tests: nameEdit, lambdaSlider, lambdaSpin, exponentSpin, modeCombo,
+// Object names for tests: nameEdit (the object's name), materialCombo, materialNameEdit,
+// usersLabel, makeUniqueButton, lambdaSlider, lambdaSpin, exponentSpin, modeCombo,
 // irradianceCheck, grazingCheck, tintButton, translateX/Y/Z, rotateX/Y/Z, scaleSpin, editor,
 // hintLabel.
 #pragma once
@@ -36,6 +45,7 @@ class QSlider;
 
 namespace mipgloss::ui {
 
+class EditSessions;
 class SceneDocument;
 
 // QColor values are sRGB-encoded, materials hold linear RGB: the conversion is colour.h's exact
@@ -53,18 +63,27 @@ public:
     static constexpr int kSliderStepsPerLambda = 20;
 
 private:
-    void refresh();          // everything from the document
-    void refreshMaterial();  // material widgets from the selected object
+    void refresh();           // everything from the document
+    void refreshMaterial();   // material widgets from the selected object
+    void refreshMaterials();  // the material combo: the scene's materials
+    void refreshUsers();      // how many objects share the selected object's material
     void refreshTransform();
-    void editMaterial(const std::function<void(Material&)>& edit);
-    void editTransform(const std::function<void(Transform&)>& edit);
-    void setLambda(double lambda);
+    // `from`: the widget the edit comes from, whose interaction makes one undo step.
+    void editMaterial(const std::function<void(Material&)>& edit, const QObject* from = nullptr);
+    void editTransform(const std::function<void(Transform&)>& edit, const QObject* from);
+    void setLambda(double lambda, const QObject* from);
+    void renameMaterial();
     void chooseTint();
 
     SceneDocument* document_;
+    EditSessions* sessions_ = nullptr;
     QLabel* hint_ = nullptr;
     QWidget* editor_ = nullptr;
     QLineEdit* name_ = nullptr;
+    QComboBox* materialChooser_ = nullptr;
+    QLineEdit* materialName_ = nullptr;
+    QLabel* users_ = nullptr;
+    QPushButton* makeUnique_ = nullptr;
     QSlider* lambdaSlider_ = nullptr;
     QDoubleSpinBox* lambdaSpin_ = nullptr;
     QDoubleSpinBox* exponentSpin_ = nullptr;

@@ -2,13 +2,34 @@
 // when the value changes (Qt's setX / xChanged habit), so two-way bindings are safe. The scene
 // itself stays a plain value (mipgloss::Scene); meshes are shared, never copied, by duplicates.
 //
+// Undo. Every edit made through the public setters is a QUndoCommand (scene_commands.h) pushed
+// onto undoStack(); the command applies it through the private mutators below, which change the
+// scene and emit the targeted signals, and nothing else. So undo and redo emit exactly what the
+// edit did, and undoing returns the scene to a value equal (Scene::operator==) to the one before
+// the edit: material ids, the materials' order and the objects' order included. Edits that change
+// nothing push nothing. resetScene (New, Open) is not an edit: it clears the stack.
+//
+// One step per interaction. setMaterial, setTransform, setEnvironment and setDisplay take a
+// MergeKey: consecutive edits of the same target (the same material, object, the environment or
+// the display settings) carrying the same non-zero key merge into one undo step, and a merge that
+// comes back to the value before the step drops the step. The panels take a key per interaction
+// (a slider drag, a visit to a spin box: edit_sessions.h); 0, the default, never merges.
+//
 // The document never holds an invalid λ (phong.h's isValidLambda: finite, in [0, kMaxLambda]).
 // setMaterial and setDisplay refuse one (NaN, negative, above kMaxLambda): the λ keeps its last
 // good value, the edit's other fields still apply, and nothing is emitted if nothing else
 // changed. The document has no error channel, so the refusal is silent; the widgets never send
-// such a value (material_panel.h, the window's background box) and scene files reject one on
-// load (scene_file.h). addObject and resetScene have no previous value to keep: they bring an
-// out-of-range λ to the nearest end of [0, kMaxLambda] and a NaN one to 0 (the mirror).
+// such a value (material_panel.h, the environment panel's background box) and scene files reject
+// one on load (scene_file.h). addObject and resetScene have no previous value to keep: they bring
+// an out-of-range λ to the nearest end of [0, kMaxLambda] and a NaN one to 0 (the mirror).
+//
+// Signals. Object rows come in pairs, before and after the change (objectAboutToBeInserted /
+// objectInserted, objectAboutToBeRemoved / objectRemoved, aboutToReset / sceneReset), so a model
+// can tell its views exactly which row moves (scene_list_model.h); objectsChanged follows each of
+// them for those that only need to know that the list changed. A removed selected object hands
+// the selection on (to the object that takes its row, or the new last one) before it is removed,
+// so a view never sees its current row disappear. changed() comes once per edit, after the
+// targeted signals.
 #pragma once
 
 #include "mipgloss/scene/library.h"
@@ -17,6 +38,10 @@
 #include <QObject>
 #include <QString>
 
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+
 class QUndoStack;
 
 namespace mipgloss::ui {
@@ -24,6 +49,10 @@ namespace mipgloss::ui {
 class SceneDocument : public QObject {
     Q_OBJECT
 public:
+    // Edits carrying the same non-zero key merge into one undo step (see above).
+    using MergeKey = std::uint64_t;
+    static MergeKey newMergeKey();  // never returned before in this process, never 0
+
     explicit SceneDocument(QObject* parent = nullptr);
 
     const Scene& scene() const { return scene_; }
@@ -45,36 +74,94 @@ public:
     void removeObject(int index);
     int duplicateObject(int index);  // placed beside the original, same mesh and material (shared)
     // Edits the material object `index` uses, so every object sharing it changes.
-    void setMaterial(int index, const Material& material);
-    void setTransform(int index, const Transform& transform);
+    void setMaterial(int index, const Material& material, MergeKey merge = 0);
+    void setTransform(int index, const Transform& transform, MergeKey merge = 0);
     void setVisible(int index, bool visible);
     void setName(int index, const QString& name);
 
+    // Materials. setMaterialName renames the material object `index` uses (for every object that
+    // shares it); the name is trimmed, and refused (false, no change) when it is not a valid
+    // material name (library.h's materialNameProblem) or another material of the scene has it.
+    bool setMaterialName(int index, const QString& name);
+    // Object `index` uses material `id` from now on; an id not in the scene changes nothing.
+    void assignMaterial(int index, MaterialId id);
+    // Gives object `index` a copy of its material of its own ("Gold" -> "Gold 2", the same
+    // parameters and library entry) when others share it; returns the material it uses after.
+    MaterialId makeMaterialUnique(int index);
     // Gives object `index` the library entry's material: a scene material that came from the same
     // entry with the same parameters is reused, otherwise a new one named after the entry (made
     // unique) and remembering it is added.
     void applyLibraryMaterial(int index, const LibraryMaterial& entry);
 
-    void setEnvironment(const EnvironmentSettings& settings);
-    void setDisplay(const DisplaySettings& settings);
+    void setEnvironment(const EnvironmentSettings& settings, MergeKey merge = 0);
+    void setDisplay(const DisplaySettings& settings, MergeKey merge = 0);
+    // The environment the document asked for, `failed` (EnvironmentManager::lastFailure(), whose
+    // rotation is ignored), could not be used: `fallback` goes back without a step of its own.
+    // The steps that asked for `failed` are withdrawn: the newest ones on the stack are undone and
+    // dropped (neither Undo nor Redo offers them again), and older ones, under later edits, are
+    // made obsolete (Undo passes over them without changing anything). Nothing happens when the
+    // document has moved on to other settings meanwhile.
+    void withdrawFailedEnvironment(const EnvironmentSettings& failed, const EnvironmentSettings& fallback);
 
-    // Replaces everything (open scene, new scene).
+    // Replaces everything (open scene, new scene) and clears the undo stack.
     void resetScene(Scene scene);
 
     int selected() const { return selected_; }
     void setSelected(int index);  // -1 clears
 
 signals:
-    void objectsChanged();                 // added, removed, reordered or reset
+    void objectAboutToBeInserted(int index);
+    void objectInserted(int index);
+    void objectAboutToBeRemoved(int index);
+    void objectRemoved(int index);
+    void aboutToReset();
+    void sceneReset();
+    void objectsChanged();                 // after any of the six above
     void objectChanged(int index);         // name, visibility
-    void materialChanged(int index);       // emitted for every object using the edited material
+    void materialChanged(int index);       // which material, its parameters or its name; for
+                                           // every object using the edited material
+    void materialsChanged();               // the scene's materials: one added, removed or renamed
     void transformChanged(int index);
     void environmentChanged();
     void displayChanged();
     void selectionChanged(int index);
-    void changed();                        // any of the above except selection
+    void changed();                        // once per edit, undo or redo, and on reset
 
 private:
+    template <class Value, int Id>
+    friend class ReplaceCommand;
+    friend class SetMaterialCommand;
+    friend class RenameMaterialCommand;
+    friend class AssignMaterialCommand;
+    friend class SetTransformCommand;
+    friend class SetObjectNameCommand;
+    friend class SetVisibleCommand;
+    friend class InsertObjectCommand;
+    friend class RemoveObjectCommand;
+    friend class SetEnvironmentCommand;
+    friend class SetDisplayCommand;
+
+    // The steps commands are made of: change the scene and emit the targeted signals, nothing
+    // else (no changed(), no undo step).
+    void insertMaterialAt(std::size_t position, const NamedMaterial& material);
+    void removeMaterial(MaterialId id);
+    void replaceMaterial(MaterialId id, const Material& material);
+    void renameMaterial(MaterialId id, const std::string& name);
+    void setObjectMaterial(int index, MaterialId id);
+    void replaceTransform(int index, const Transform& transform);
+    void replaceName(int index, const std::string& name);
+    void replaceVisible(int index, bool visible);
+    void insertObject(int index, SceneObject object);
+    void takeObject(int index);
+    void replaceEnvironment(const EnvironmentSettings& settings);
+    void replaceDisplay(const DisplaySettings& settings);
+    void notifyChanged() { emit changed(); }
+
+    // A material the scene could add now: a fresh id and `name` made unique.
+    NamedMaterial freshMaterial(const std::string& name, const Material& material,
+                                const std::string& libraryEntry = {}) const;
+    void pushInsert(int index, SceneObject object, std::optional<NamedMaterial> added, const QString& text);
+
     QUndoStack* undoStack_ = nullptr;
     Scene scene_;
     int selected_ = -1;

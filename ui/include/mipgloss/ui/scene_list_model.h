@@ -1,11 +1,19 @@
 // The scene's objects as a flat list for views: one row per object, in the document's order.
-//   display/edit  the name (editable: renames the object)
-//   check state   visibility (editable)
-//   tooltip       "λ 3.50 · reflect · 2,256 triangles"
-// Resets on SceneDocument::objectsChanged and updates one row on objectChanged/materialChanged.
+//   display/edit      the name (editable: renames the object)
+//   MaterialNameRole  the name of the material the object uses (SceneListDelegate draws it after
+//                     the name, in a quieter colour)
+//   check state       visibility (editable)
+//   tooltip           "Gold · λ 3.50 · reflect · 2,256 triangles"
+// Rows follow the document's paired signals (scene_document.h): an added or duplicated object is
+// one inserted row, a removed one one removed row, and only resetScene resets the model, so a
+// view's selection and current row survive edits elsewhere in the list.
+//
+// Drops: a library material (material_mime.h) dropped onto a row is applied to that object
+// (SceneDocument::applyLibraryMaterial, one undo step).
 #pragma once
 
 #include <QAbstractListModel>
+#include <QStyledItemDelegate>
 
 namespace mipgloss::ui {
 
@@ -14,6 +22,8 @@ class SceneDocument;
 class SceneListModel : public QAbstractListModel {
     Q_OBJECT
 public:
+    enum Role { MaterialNameRole = Qt::UserRole + 1 };
+
     explicit SceneListModel(SceneDocument* document, QObject* parent = nullptr);
 
     SceneDocument* document() const { return document_; }
@@ -23,10 +33,27 @@ public:
     bool setData(const QModelIndex& index, const QVariant& value, int role = Qt::EditRole) override;
     Qt::ItemFlags flags(const QModelIndex& index) const override;
 
+    QStringList mimeTypes() const override;
+    Qt::DropActions supportedDropActions() const override;
+    bool canDropMimeData(const QMimeData* data, Qt::DropAction action, int row, int column,
+                         const QModelIndex& parent) const override;
+    bool dropMimeData(const QMimeData* data, Qt::DropAction action, int row, int column,
+                      const QModelIndex& parent) override;
+
 private:
     void rowChanged(int row);
 
     SceneDocument* document_;
+};
+
+// Draws a row as usual and the material's name after the object's, in the disabled text colour,
+// cut short (…) to the room left; the row's width stays the name's, so a long material name never
+// makes the list scroll sideways.
+class SceneListDelegate : public QStyledItemDelegate {
+    Q_OBJECT
+public:
+    using QStyledItemDelegate::QStyledItemDelegate;
+    void paint(QPainter* painter, const QStyleOptionViewItem& option, const QModelIndex& index) const override;
 };
 
 }  // namespace mipgloss::ui

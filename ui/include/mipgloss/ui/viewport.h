@@ -3,7 +3,8 @@
 // update()); nothing redraws in a loop.
 //
 // Mouse: left drag orbits, right or middle drag (or shift + left) pans, the wheel zooms, a click
-// selects the object under the cursor; F frames all; Home resets the view.
+// selects the object under the cursor; F frames all; Home resets the view. A library material
+// (material_mime.h) dropped on an object is applied to it and selects it.
 #pragma once
 
 #include "mipgloss/scene/camera.h"
@@ -49,6 +50,9 @@ protected:
     void mouseReleaseEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dragMoveEvent(QDragMoveEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
 
 private:
     void cleanup();

@@ -1,0 +1,62 @@
+// Imports mesh files into a SceneDocument. Files adding up to more than kBackgroundImportBytes are
+// loaded on a worker thread (the UI never waits on a large file), smaller ones at once; finished()
+// follows either way. Each mesh becomes an object named after the file stem, referring to the
+// file by its absolute path, with a material of its own (named after it) of λ = kImportedLambda
+// looked up by the reflection vector: a plainly glossy start, well inside the filtered levels of
+// any chain of 16² or more. One import (one call, however many files) is one undo step.
+//
+// Placement (placeBeside):
+//   - size: R = the median world radius of the visible objects. A mesh whose radius r is more than
+//     4× larger or smaller than R is scaled by R / r (so a 0.2-unit scan and a 120-unit one both
+//     sit beside teapots); otherwise it keeps its own size. With no visible objects it keeps it.
+//   - place: to the right (+x) of the visible scene's bounds with a gap of 0.2 R (0.2 r when
+//     alone), its centre at the height and depth of the bounds' centre.
+#pragma once
+
+#include "mipgloss/scene/scene.h"
+
+#include <QObject>
+#include <QString>
+#include <QStringList>
+
+#include <cstdint>
+
+namespace mipgloss::ui {
+
+class SceneDocument;
+
+// Where a mesh goes in `scene` (the rule above).
+Transform placeBeside(const Scene& scene, const Mesh& mesh);
+
+class MeshImporter : public QObject {
+    Q_OBJECT
+public:
+    // Imports whose files add up to more than this run on a worker thread.
+    static constexpr std::int64_t kBackgroundImportBytes = 4 * 1024 * 1024;
+    // The λ an imported object starts with (reflect mode).
+    static constexpr float kImportedLambda = 3.0f;
+
+    explicit MeshImporter(SceneDocument* document, QObject* parent = nullptr);
+
+    void import(const QStringList& paths);
+    // True while a background import runs.
+    bool busy() const { return running_ > 0; }
+
+    // One loaded mesh file (or its error), handed from the loader to the document.
+    struct Loaded;
+
+signals:
+    // A background import started (the window shows a busy indicator).
+    void backgroundStarted(int files);
+    // After import(): what was added ("bunny.obj (2,256 triangles)", in order) and the errors, one
+    // per failed file, each naming it.
+    void finished(const QStringList& added, const QStringList& errors);
+
+private:
+    void finish(const std::vector<Loaded>& results);
+
+    SceneDocument* document_;
+    int running_ = 0;
+};
+
+}  // namespace mipgloss::ui

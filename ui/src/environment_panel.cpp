@@ -1,0 +1,218 @@
+#include "mipgloss/ui/environment_panel.h"
+
+#include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/ui/environment_manager.h"
+#include "mipgloss/ui/scene_document.h"
+#include "edit_sessions.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QSignalBlocker>
+#include <QSlider>
+
+#include <cmath>
+
+namespace mipgloss::ui {
+
+namespace {
+const int kFaceSizes[] = {64, 128, 256, 512, 1024};
+}
+
+QString environmentDisplayName(const std::string& source) {
+    if (source == kBuiltinEnvironment) return QStringLiteral("courtyard");
+    return QFileInfo(QString::fromStdString(source)).fileName();
+}
+
+// Not "%1²": QString::arg reads the superscript two as a digit of the placeholder.
+QString squaredSize(int size) { return QString::number(size) + QStringLiteral("²"); }
+
+EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* environments, QWidget* parent)
+    : QWidget(parent), document_(document), environments_(environments) {
+    setObjectName(QStringLiteral("environmentPanel"));
+    sessions_ = new EditSessions(this);
+    auto* form = new QFormLayout(this);
+
+    source_ = new QLabel(this);
+    source_->setObjectName(QStringLiteral("envSourceLabel"));
+    source_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    auto* open = new QPushButton(tr("Open…"), this);
+    open->setObjectName(QStringLiteral("openEnvironmentButton"));
+    connect(open, &QPushButton::clicked, this, &EnvironmentPanel::openRequested);
+    auto* sourceRow = new QHBoxLayout;
+    sourceRow->addWidget(source_, 1);
+    sourceRow->addWidget(open);
+    form->addRow(tr("Source"), sourceRow);
+    info_ = new QLabel(this);
+    info_->setObjectName(QStringLiteral("envInfoLabel"));
+    info_->setWordWrap(true);
+    form->addRow(QString(), info_);
+
+    builder_ = new QComboBox(this);
+    builder_->setObjectName(QStringLiteral("builderCombo"));
+    for (const Builder b : kAllBuilders) builder_->addItem(QString::fromLatin1(builderName(b)));
+    connect(builder_, &QComboBox::currentTextChanged, this, [this](const QString& name) {
+        Builder builder;
+        if (parseBuilder(name.toStdString(), builder))
+            editEnvironment([&](EnvironmentSettings& s) { s.builder = builder; });
+    });
+    form->addRow(tr("Mip builder"), builder_);
+
+    faceSize_ = new QComboBox(this);
+    faceSize_->setObjectName(QStringLiteral("faceSizeCombo"));
+    for (int size : kFaceSizes) faceSize_->addItem(squaredSize(size), size);
+    connect(faceSize_, &QComboBox::currentIndexChanged, this, [this](int) {
+        const int size = faceSize_->currentData().toInt();
+        editEnvironment([size](EnvironmentSettings& s) { s.faceSize = size; });
+    });
+    form->addRow(tr("Face size"), faceSize_);
+
+    handedness_ = new QComboBox(this);
+    handedness_->setObjectName(QStringLiteral("handednessCombo"));
+    handedness_->addItem(tr("right-handed (GL)"), static_cast<int>(Handedness::Right));
+    handedness_->addItem(tr("left-handed (Irrlicht)"), static_cast<int>(Handedness::Left));
+    handedness_->setToolTip(tr("How six face images are oriented (docs/conventions.md, Handedness)"));
+    connect(handedness_, &QComboBox::currentIndexChanged, this, [this](int) {
+        const auto h = static_cast<Handedness>(handedness_->currentData().toInt());
+        editEnvironment([h](EnvironmentSettings& s) { s.handedness = h; });
+    });
+    form->addRow(tr("Face images"), handedness_);
+
+    rotation_ = new QSlider(Qt::Horizontal, this);
+    rotation_->setObjectName(QStringLiteral("envRotationSlider"));
+    rotation_->setRange(-180, 180);
+    rotation_->setToolTip(tr("Turns the environment about +Y (degrees); never rebuilds"));
+    sessions_->track(rotation_);
+    connect(rotation_, &QSlider::valueChanged, this, [this](int degrees) {
+        editEnvironment([degrees](EnvironmentSettings& s) { s.rotationDegrees = static_cast<float>(degrees); },
+                        rotation_);
+    });
+    form->addRow(tr("Rotation"), rotation_);
+
+    showBackground_ = new QCheckBox(tr("Show"), this);
+    showBackground_->setObjectName(QStringLiteral("showBackgroundCheck"));
+    connect(showBackground_, &QCheckBox::toggled, this,
+            [this](bool on) { editDisplay([on](DisplaySettings& d) { d.showBackground = on; }); });
+    backgroundBlur_ = new QDoubleSpinBox(this);
+    backgroundBlur_->setObjectName(QStringLiteral("backgroundBlurSpin"));
+    backgroundBlur_->setPrefix(QStringLiteral("blur λ "));
+    backgroundBlur_->setDecimals(2);
+    backgroundBlur_->setSingleStep(0.25);
+    // The same λ as a material's (phong.h): one meaning under any environment and face size.
+    backgroundBlur_->setRange(0.0, kMaxLambda);
+    backgroundBlur_->setToolTip(
+        tr("The background's blur λ, as a material's: the Phong lobe n = 3·128²·4^−λ − 1, the same "
+           "under any environment and face size; 0 is sharp, each +1 makes the lobe twice as "
+           "wide"));
+    backgroundBlur_->setKeyboardTracking(false);
+    sessions_->track(backgroundBlur_);
+    connect(backgroundBlur_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editDisplay([v](DisplaySettings& d) { d.backgroundLambda = static_cast<float>(v); }, backgroundBlur_);
+    });
+    auto* backgroundRow = new QHBoxLayout;
+    backgroundRow->addWidget(showBackground_);
+    backgroundRow->addWidget(backgroundBlur_, 1);
+    form->addRow(tr("Background"), backgroundRow);
+
+    exposure_ = new QDoubleSpinBox(this);
+    exposure_->setObjectName(QStringLiteral("exposureSpin"));
+    exposure_->setRange(-20.0, 20.0);
+    exposure_->setSingleStep(0.5);
+    exposure_->setDecimals(1);
+    exposure_->setSuffix(QStringLiteral(" EV"));
+    exposure_->setKeyboardTracking(false);
+    sessions_->track(exposure_);
+    connect(exposure_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editDisplay([v](DisplaySettings& d) { d.exposureEv = static_cast<float>(v); }, exposure_);
+    });
+    form->addRow(tr("Exposure"), exposure_);
+
+    toneMap_ = new QComboBox(this);
+    toneMap_->setObjectName(QStringLiteral("toneMapCombo"));
+    for (ToneMap map : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
+        toneMap_->addItem(QString::fromLatin1(toneMapName(map)), static_cast<int>(map));
+    connect(toneMap_, &QComboBox::currentIndexChanged, this, [this](int) {
+        const auto map = static_cast<ToneMap>(toneMap_->currentData().toInt());
+        editDisplay([map](DisplaySettings& d) { d.toneMap = map; });
+    });
+    form->addRow(tr("Tone map"), toneMap_);
+
+    samples_ = new QComboBox(this);
+    samples_->setObjectName(QStringLiteral("samplesCombo"));
+    for (int n : {1, 2, 4, 8}) samples_->addItem(n == 1 ? tr("off") : QStringLiteral("%1×").arg(n), n);
+    connect(samples_, &QComboBox::currentIndexChanged, this, [this](int) {
+        const int n = samples_->currentData().toInt();
+        editDisplay([n](DisplaySettings& d) { d.samples = n; });
+    });
+    form->addRow(tr("Multisampling"), samples_);
+
+    connect(document_, &SceneDocument::environmentChanged, this, &EnvironmentPanel::refresh);
+    connect(document_, &SceneDocument::displayChanged, this, &EnvironmentPanel::refresh);
+    connect(environments_, &EnvironmentManager::environmentReady, this, &EnvironmentPanel::refresh);
+    refresh();
+}
+
+void EnvironmentPanel::editEnvironment(const std::function<void(EnvironmentSettings&)>& edit,
+                                       const QObject* from) {
+    EnvironmentSettings s = document_->scene().environment;
+    edit(s);
+    document_->setEnvironment(s, from ? sessions_->key(from) : 0);
+}
+
+void EnvironmentPanel::editDisplay(const std::function<void(DisplaySettings&)>& edit, const QObject* from) {
+    DisplaySettings d = document_->scene().display;
+    edit(d);
+    document_->setDisplay(d, from ? sessions_->key(from) : 0);
+}
+
+void EnvironmentPanel::refresh() {
+    const EnvironmentSettings& s = document_->scene().environment;
+    const DisplaySettings& d = document_->scene().display;
+    source_->setText(environmentDisplayName(s.source));
+    source_->setToolTip(QString::fromStdString(s.source));
+
+    const QSignalBlocker b1(builder_), b2(faceSize_), b3(handedness_), b4(rotation_),
+        b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_);
+    builder_->setCurrentText(QString::fromLatin1(builderName(s.builder)));
+    int sizeIndex = faceSize_->findData(s.faceSize);
+    if (sizeIndex < 0) {  // a size from a scene file or the command line
+        faceSize_->addItem(squaredSize(s.faceSize), s.faceSize);
+        sizeIndex = faceSize_->count() - 1;
+    }
+    faceSize_->setCurrentIndex(sizeIndex);
+    handedness_->setCurrentIndex(handedness_->findData(static_cast<int>(s.handedness)));
+    rotation_->setValue(static_cast<int>(std::lround(s.rotationDegrees)));
+    showBackground_->setChecked(d.showBackground);
+    backgroundBlur_->setValue(d.backgroundLambda);
+    backgroundBlur_->setEnabled(d.showBackground);
+    exposure_->setValue(d.exposureEv);
+    toneMap_->setCurrentIndex(toneMap_->findData(static_cast<int>(d.toneMap)));
+    int samplesIndex = samples_->findData(d.samples);
+    if (samplesIndex < 0) {
+        samples_->addItem(QStringLiteral("%1×").arg(d.samples), d.samples);
+        samplesIndex = samples_->count() - 1;
+    }
+    samples_->setCurrentIndex(samplesIndex);
+
+    if (const auto current = environments_->current()) {
+        info_->setText(tr("%1 · %2 · %3 · import %4 s, build %5 s, filtered through level %6 of %7%8")
+                           .arg(environmentDisplayName(current->settings.source))
+                           .arg(squaredSize(current->base ? current->base->size() : 0))
+                           .arg(QString::fromLatin1(builderName(current->settings.builder)))
+                           .arg(current->importSeconds, 0, 'f', 2)
+                           .arg(current->buildSeconds, 0, 'f', 2)
+                           .arg(current->lastFilteredLevel)
+                           .arg(current->levelCount() - 1)
+                           .arg(current->irradiance ? tr(", irradiance map") : QString()));
+    } else {
+        info_->setText(tr("loading…"));
+    }
+}
+
+}  // namespace mipgloss::ui
