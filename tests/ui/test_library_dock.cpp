@@ -14,6 +14,7 @@
 #include "mipgloss/ui/thumbnail_cache.h"
 #include "mipgloss/ui/viewport.h"
 #include "render_support.h"
+#include "scene_test_support.h"
 #include "test_support.h"
 #include "widget_test_support.h"
 
@@ -42,6 +43,7 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::sphereObject;
 namespace fs = std::filesystem;
 
 namespace {
@@ -85,20 +87,6 @@ void expectRowsMatch(const LibraryModel& model, const LibraryDocument& doc) {
     ASSERT_EQ(model.rowCount(), doc.count());
     for (int row = 0; row < doc.count(); ++row)
         EXPECT_EQ(model.data(model.index(row)).toString().toStdString(), doc.entry(row).name) << "row " << row;
-}
-
-std::shared_ptr<const Mesh> sphereMesh() {
-    static const auto mesh = std::make_shared<const Mesh>(makeSphere(16, 32));
-    return mesh;
-}
-
-SceneObject sphereObject(const std::string& name, float x) {
-    SceneObject o;
-    o.name = name;
-    o.mesh = sphereMesh();
-    o.meshSource = "builtin:sphere";
-    o.transform.translation = {x, 0.0f, 0.0f};
-    return o;
 }
 
 // The embedded courtyard at a small size, so the manager's builds are quick.
