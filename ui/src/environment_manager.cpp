@@ -26,6 +26,12 @@ QThreadPool& workerPool() {
     }();
     return *pool;
 }
+
+// True when a job for (a, na) makes what (b, nb) asks for: the same environment filtered at least
+// as deep, with the irradiance map if b needs one.
+bool covers(const EnvironmentSettings& a, const ChainNeeds& na, const EnvironmentSettings& b, const ChainNeeds& nb) {
+    return a == b && na.lastFilteredLevel >= nb.lastFilteredLevel && (na.irradiance || !nb.irradiance);
+}
 }  // namespace
 
 EnvironmentManager::EnvironmentManager(QObject* parent) : QObject(parent), settle_(new QTimer(this)) {
@@ -136,12 +142,30 @@ void EnvironmentManager::request(const EnvironmentSettings& settings, const Chai
         if (cancelRunning_) *cancelRunning_ = true;  // a job for something else is obsolete
         return;
     }
+    // The environment drawn before the running job's early one is asked for again (an open undone
+    // while its chain is built): it is still here, drawn again at once.
+    if (busy_ && jobStart_ && jobStart_ != current_ && jobStart_->satisfies(wanted, needs)) {
+        haveRequest_ = false;
+        if (cancelRunning_) *cancelRunning_ = true;
+        current_ = jobStart_;
+        emit environmentReady();
+        return;
+    }
+    const bool running = busy_ && cancelRunning_ && !*cancelRunning_;
+    if (running && covers(runningSettings_, runningNeeds_, wanted, needs)) {
+        haveRequest_ = false;  // on its way (a scene edit that changes nothing the build needs)
+        return;
+    }
     if (haveRequest_ && wanted == wantedSettings_ && needs == wantedNeeds_ && busy_) return;
     wantedSettings_ = wanted;
     wantedNeeds_ = needs;
     haveRequest_ = true;
     if (busy_) {
-        if (cancelRunning_) *cancelRunning_ = true;  // onJobFinished starts the new one
+        // The newest request wins (onJobFinished starts it), but a job still reading the same file
+        // the same way goes on to its early environment, which the next job starts from: a λ or
+        // builder change during a long import does not read the file again.
+        const bool sameFileImporting = running && importing_ && sameImport(runningSettings_, wanted);
+        if (cancelRunning_ && !sameFileImporting) *cancelRunning_ = true;
         return;
     }
     startJob();
@@ -156,12 +180,17 @@ void EnvironmentManager::startJob() {
     const EnvironmentSettings settings = wantedSettings_;
     const ChainNeeds needs = wantedNeeds_;
     runningSettings_ = settings;
+    runningNeeds_ = needs;
     const std::shared_ptr<const PreparedEnvironment> previous = current_;
+    jobStart_ = current_;
+    const bool imports = !previous || !previous->sameImport(settings);
+    importing_ = imports;
     QPointer<EnvironmentManager> self(this);
 
     (void)QtConcurrent::run(&workerPool(), [=] {
         std::shared_ptr<PreparedEnvironment> result;
         QString error;
+        bool imported = false, importCutShort = false;
         try {
             auto progress = [&](const std::string& stage, float fraction) {
                 if (*cancel) return false;
@@ -172,42 +201,83 @@ void EnvironmentManager::startJob() {
                     Qt::QueuedConnection);
                 return true;
             };
+            // Queued like progress, so the UI sees the early environment after the import's
+            // reports and before the build's, and before onJobFinished.
+            auto onImported = [&](const std::shared_ptr<const PreparedEnvironment>& early) {
+                imported = true;
+                QMetaObject::invokeMethod(
+                    self, [self, early, cancel] {
+                        if (self) self->onImported(early, cancel);
+                    },
+                    Qt::QueuedConnection);
+            };
             result = std::make_shared<PreparedEnvironment>(
-                prepareEnvironment(settings, needs, previous.get(), progress));
+                prepareEnvironment(settings, needs, previous.get(), progress, onImported));
         } catch (const Cancelled&) {
             result.reset();
+            importCutShort = imports && !imported;
         } catch (const std::exception& e) {
             error = QString::fromStdString(e.what());
             if (error.isEmpty()) error = QStringLiteral("unknown error");
         }
         QMetaObject::invokeMethod(
             self, [=] {
-                if (self) self->onJobFinished(result, error);
+                if (self) self->onJobFinished(result, error, *cancel, importCutShort);
             },
             Qt::QueuedConnection);
     });
 }
 
-void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error) {
+void EnvironmentManager::adopt(std::shared_ptr<const PreparedEnvironment> next) {
+    current_ = std::move(next);
+    emit environmentReady();
+}
+
+void EnvironmentManager::onImported(std::shared_ptr<const PreparedEnvironment> early,
+                                    const std::shared_ptr<std::atomic<bool>>& cancel) {
+    ++counters_.imports;  // read, whether drawn or not
+    // A job cancelled while it read its file (another file was asked for) is never drawn.
+    if (cancel != cancelRunning_ || *cancel) return;
+    importing_ = false;
+    adopt(std::move(early));
+    ++counters_.earlyEnvironments;
+    // A request for this same file with other needs or builder waited for the import (request):
+    // this job's chain is not what it asks for, so the next job starts now, from this base.
+    if (haveRequest_) *cancel = true;
+}
+
+void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error,
+                                       bool cancelled, bool importCutShort) {
+    counters_.importsCancelled += importCutShort ? 1 : 0;
+    if (result) {
+        // What the job made rather than reused from the environment it started from, kept or not
+        // (its import was counted in onImported).
+        const PreparedEnvironment* from = jobStart_.get();
+        counters_.chainBuilds += !from || result->chain != from->chain ? 1 : 0;
+        counters_.irradianceBuilds += result->irradiance && (!from || result->irradiance != from->irradiance) ? 1 : 0;
+    }
     if (!error.isEmpty()) {
         ++counters_.failures;
         failedSettings_ = runningSettings_;  // not wantedSettings_: a newer request may be queued
         haveFailed_ = true;
+        // Its early environment, if it came, goes: what was drawn before is drawn again (before
+        // `failed`, whose handlers read current()).
+        if (current_ != jobStart_) {
+            current_ = jobStart_;
+            emit environmentReady();
+        }
         std::cerr << "mipgloss: " << error.toStdString() << '\n';
         emit failed(error);
-    } else if (result) {
-        // What the job made rather than reused from current_ (jobs run one at a time, and only
-        // this function replaces current_, so current_ is what the job started from).
-        const PreparedEnvironment* before = current_.get();
-        counters_.imports += !before || result->base != before->base ? 1 : 0;
-        counters_.chainBuilds += !before || result->chain != before->chain ? 1 : 0;
-        counters_.irradianceBuilds += result->irradiance && (!before || result->irradiance != before->irradiance) ? 1 : 0;
-        current_ = std::move(result);
+    } else if (result && (!cancelled || (haveRequest_ && result->satisfies(wantedSettings_, wantedNeeds_)))) {
+        // A cancelled job that finished anyway is kept only when it is what the newest request
+        // asks for.
+        adopt(std::move(result));
         haveFailed_ = false;
-        emit environmentReady();
         lobesWanted_ = true;  // the new environment's lobes
     }
     cancelRunning_.reset();
+    jobStart_.reset();
+    importing_ = false;
     if (haveRequest_) {
         // Something newer was asked for while this ran (or this one was cancelled for it).
         if (current_ && current_->satisfies(wantedSettings_, wantedNeeds_)) {

@@ -200,7 +200,16 @@ void EnvironmentPanel::refresh() {
     }
     samples_->setCurrentIndex(samplesIndex);
 
-    if (const auto current = environments_->current()) {
+    const auto current = environments_->current();
+    if (current && !current->complete()) {
+        // An early environment (environment_manager.h): drawn from its base while the chain is built.
+        info_->setText(tr("%1 · %2 · import %3 s; building the %4 chain (glossy objects show box "
+                          "mips of the base until it is done)")
+                           .arg(environmentDisplayName(current->settings.source))
+                           .arg(squaredSize(current->base ? current->base->size() : 0))
+                           .arg(current->importSeconds, 0, 'f', 2)
+                           .arg(QString::fromLatin1(builderName(current->settings.builder))));
+    } else if (current) {
         info_->setText(tr("%1 · %2 · %3 · import %4 s, build %5 s, filtered through level %6 of %7%8")
                            .arg(environmentDisplayName(current->settings.source))
                            .arg(squaredSize(current->base ? current->base->size() : 0))

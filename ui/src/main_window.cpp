@@ -625,6 +625,7 @@ void MainWindow::refreshStatus() {
                        .arg(squaredSize(current && current->base ? current->base->size() : s.faceSize))
                        .arg(QString::fromLatin1(builderName(s.builder)));
     if (!current) text += tr(" (loading)");
+    else if (!current->complete()) text += tr(" (building the chain)");
     envStatus_->setText(text);
 }
 

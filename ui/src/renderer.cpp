@@ -184,12 +184,15 @@ struct Renderer::Impl {
         }
     }
 
-    void uploadCube(GLuint texture, const std::vector<const CubeMap*>& levels) {
+    // Sends `levels` as the texture's levels firstLevel, firstLevel + 1, … (those below stay) and
+    // makes the last of them its GL_TEXTURE_MAX_LEVEL.
+    void uploadCube(GLuint texture, const std::vector<const CubeMap*>& levels, int firstLevel = 0) {
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, texture);
         gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
         std::vector<float> face;
-        for (std::size_t level = 0; level < levels.size(); ++level) {
-            const CubeMap& cube = *levels[level];
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            const CubeMap& cube = *levels[k];
+            const std::size_t level = static_cast<std::size_t>(firstLevel) + k;
             const int n = cube.size();
             face.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * 3);
             for (Face f : kAllFaces) {
@@ -207,7 +210,7 @@ struct Renderer::Impl {
                                  face.data());
             }
         }
-        const GLint last = static_cast<GLint>(levels.size()) - 1;
+        const GLint last = firstLevel + static_cast<GLint>(levels.size()) - 1;
         gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_BASE_LEVEL, 0);
         gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, last);
         gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER,
@@ -419,24 +422,45 @@ void Renderer::destroy() {
 
 void Renderer::setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment) {
     Impl& d = *impl_;
-    if (!d.gl || !environment || !environment->chain || d.environment == environment) return;
-    // The chain is uploaded only when it is a different chain (a new irradiance map alone
-    // uploads just that).
-    if (!d.environment || d.environment->chain != environment->chain) {
-        // Only the levels the renderer reads (phong.h): smaller ones cannot hold a lobe under
-        // bilinear reads, and GL_TEXTURE_MAX_LEVEL keeps the GPU from reaching past the last.
-        std::vector<const CubeMap*> levels;
-        const int last = std::min(lastReadLevel(environment->chain->baseSize()), environment->chain->levelCount() - 1);
-        for (int k = 0; k <= last; ++k) levels.push_back(&environment->chain->levels[static_cast<std::size_t>(k)]);
-        d.uploadCube(d.environmentTexture, levels);
-        d.environmentLevels = static_cast<int>(levels.size());
-        d.uploadCube(d.mirrorTexture, {levels.front()});
+    if (!d.gl || !environment || !environment->base || d.environment == environment) return;
+    const CubeMap& base = *environment->base;
+    const std::shared_ptr<const PreparedEnvironment>& before = d.environment;
+    // Only the levels the renderer reads (phong.h): smaller ones cannot hold a lobe under
+    // bilinear reads, and GL_TEXTURE_MAX_LEVEL keeps the GPU from reaching past the last.
+    const int last = std::min(lastReadLevel(base.size()), fullChainLevelCount(base.size()) - 1);
+    const bool newBase = !before || before->base != environment->base;
+    if (newBase) {
+        // Once per import, whether its early environment or the complete one comes first.
+        d.uploadCube(d.mirrorTexture, {&base});
         d.gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.mirrorTexture);
         d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 1000);
         d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         d.gl->glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
-        d.environmentFaceSize = environment->chain->baseSize();
-        ++d.counters.chainUploads;
+        d.uploadCube(d.environmentTexture, {&base});
+        d.environmentFaceSize = base.size();
+        // The old import's irradiance map is not this one's: until its own arrives, objects that
+        // ask for it read the chain by the normal.
+        d.uploadedIrradiance = nullptr;
+        ++d.counters.baseUploads;
+    }
+    if (environment->chain) {
+        // Level 0 of every builder's chain holds the base's texels (builders.h), already there.
+        if (newBase || before->chain != environment->chain) {
+            std::vector<const CubeMap*> levels;
+            const int chainLast = std::min(last, environment->chain->levelCount() - 1);
+            for (int k = 1; k <= chainLast; ++k) levels.push_back(&environment->chain->levels[static_cast<std::size_t>(k)]);
+            if (!levels.empty()) d.uploadCube(d.environmentTexture, levels, 1);
+            d.environmentLevels = chainLast + 1;
+            ++d.counters.chainUploads;
+        }
+    } else if (newBase || before->chain) {
+        // No chain yet: GL's 2×2 box mips of the base stand in for it (the `box` builder).
+        d.gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
+        d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, last);
+        d.gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER,
+                              last > 0 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+        if (last > 0) d.gl->glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+        d.environmentLevels = last + 1;
     }
     if (environment->irradiance && environment->irradiance.get() != d.uploadedIrradiance) {
         d.uploadCube(d.irradianceTexture, {environment->irradiance.get()});

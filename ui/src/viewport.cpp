@@ -86,14 +86,14 @@ void Viewport::paintGL() {
         painter.setFont(QFont(QStringLiteral("monospace"), 9));
         const QString text =
             QStringLiteral("frames %1  drawn %2  culled %3\nbuilds %4  irradiance %5  imports %6\n"
-                           "chain uploads %7  mesh uploads %8  samplers %9\n"
-                           "lobe cubes built %10  on GPU %11\nsettled (own lobe) %12  from the chain %13")
+                           "base uploads %7  chain uploads %8  mesh uploads %9  samplers %10\n"
+                           "lobe cubes built %11  on GPU %12\nsettled (own lobe) %13  from the chain %14")
                 .arg(c.frames).arg(c.objectsDrawn).arg(c.objectsCulled)
                 .arg(e.chainBuilds).arg(e.irradianceBuilds).arg(e.imports)
-                .arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated)
+                .arg(c.baseUploads).arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated)
                 .arg(e.lobeBuilds).arg(c.lobesResident).arg(c.objectsSettled).arg(c.objectsFromChain);
-        painter.fillRect(QRect(6, 6, 330, 84), QColor(0, 0, 0, 140));
-        painter.drawText(QRect(12, 8, 320, 82), Qt::AlignLeft | Qt::AlignTop, text);
+        painter.fillRect(QRect(6, 6, 400, 84), QColor(0, 0, 0, 140));
+        painter.drawText(QRect(12, 8, 390, 82), Qt::AlignLeft | Qt::AlignTop, text);
     }
     emit frameDrawn(renderer_->counters().frames);
 }

@@ -16,9 +16,12 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+bool sameImport(const EnvironmentSettings& a, const EnvironmentSettings& b) {
+    return a.source == b.source && a.faceSize == b.faceSize && a.layout == b.layout && a.handedness == b.handedness;
+}
+
 bool PreparedEnvironment::sameImport(const EnvironmentSettings& other) const {
-    return base && settings.source == other.source && settings.faceSize == other.faceSize &&
-           settings.layout == other.layout && settings.handedness == other.handedness;
+    return base && mipgloss::sameImport(settings, other);
 }
 
 bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const {
@@ -29,7 +32,7 @@ bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const Chai
 
 PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
                                        const PreparedEnvironment* previous,
-                                       const Progress& progress) {
+                                       const Progress& progress, const EnvironmentImported& onImported) {
     PreparedEnvironment out;
     out.settings = settings;
 
@@ -54,6 +57,9 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         out.base = std::make_shared<const CubeMap>(std::move(imported.cube));
         out.report = std::move(imported.report);
         out.importSeconds = secondsSince(start);
+        out.settings.faceSize = out.base->size();
+        // The early environment: this import alone, to draw while the chain is built.
+        if (onImported) onImported(std::make_shared<const PreparedEnvironment>(out));
     }
     out.settings.faceSize = out.base->size();
 
@@ -61,8 +67,10 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
     if (settings.builder == Builder::Phong) {
         if (previous && previous->filter && previous->sameImport(settings))
             out.filter = previous->filter;
-        else
+        else {
+            reportProgress(progress, "build", 0.0f);  // the pyramid reports nothing of its own
             out.filter = std::make_shared<const PhongFilter>(*out.base);
+        }
     }
 
     // 2. The chain: kept when the builder matches and it is filtered deep enough. Otherwise built

@@ -1,5 +1,10 @@
 // Keeps the scene's environment ready: imports and builds off the UI thread (one worker, newest
 // request wins, older ones cancelled), while the previous environment stays current and usable.
+// A new import becomes current twice: first early, as soon as its base exists (chain, filter and
+// irradiance still null: the renderer draws the base as the mirror and GL's box mips of it for
+// λ > 0), then complete. Until the early one arrives the previous environment stays current; a
+// request for another file while one is read cancels it, and it never becomes current (a request
+// for the same file with other needs lets the import finish and starts from it).
 // It watches a SceneDocument and asks for exactly what the scene needs (environment.h): a change
 // of λ inside the filtered levels, of mode or of tint builds nothing. Once the scene's λ values
 // have rested for kSettleMs, it makes the lobe cubes they need (lobes.h) on the same worker, one
@@ -23,12 +28,18 @@ namespace mipgloss::ui {
 
 class SceneDocument;
 
+// Imports, chains and irradiance maps count the work done, whether or not what it made became
+// current (a job that finished although it was cancelled counts); work a cancellation cut short
+// does not.
 struct EnvironmentCounters {
     std::uint64_t imports = 0;           // files (or the embedded default) read
+    std::uint64_t importsCancelled = 0;  // imports a cancellation cut short
+    std::uint64_t earlyEnvironments = 0; // early environments made current (a new import, drawn
+                                         // before its chain)
     std::uint64_t chainBuilds = 0;       // mip chains built
     std::uint64_t irradianceBuilds = 0;  // irradiance maps computed
     std::uint64_t failures = 0;
-    std::uint64_t lobeBuilds = 0;        // lobe cubes made
+    std::uint64_t lobeBuilds = 0;        // lobe cubes made and kept (of the current environment)
 };
 
 class EnvironmentManager : public QObject {
@@ -45,6 +56,8 @@ public:
 
     // The environment to draw with; null until the first one is ready. Every new chain or
     // irradiance map comes as a new object, so the renderer uploads only when the pointer changes.
+    // May be an early one (complete() false) while its chain is built; lobe cubes are never made
+    // from that (it has no filter).
     std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
 
     bool busy() const { return busy_ || lobeBusy_; }
@@ -68,8 +81,9 @@ public:
 signals:
     void busyChanged(bool busy);
     void progress(const QString& stage, double fraction);  // from the worker, queued to the UI
-    void environmentReady();                                // current() changed
-    void lobesReady();                                      // lobes() changed
+    // current() changed (for a new import: early, then complete).
+    void environmentReady();
+    void lobesReady();  // lobes() changed
     // A file could not be used; `message` names it. The current environment is kept.
     void failed(const QString& message);
 
@@ -77,15 +91,25 @@ private:
     void startJob();
     void startLobeJob();
     void scheduleLobes();
-    void onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error);
+    void onImported(std::shared_ptr<const PreparedEnvironment> early, const std::shared_ptr<std::atomic<bool>>& cancel);
+    void onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error, bool cancelled,
+                       bool importCutShort);
+    // Makes `next`, made by the running job, current.
+    void adopt(std::shared_ptr<const PreparedEnvironment> next);
 
     SceneDocument* document_ = nullptr;
     std::shared_ptr<const PreparedEnvironment> current_;
     EnvironmentSettings wantedSettings_;
     EnvironmentSettings runningSettings_;
     ChainNeeds wantedNeeds_;
+    ChainNeeds runningNeeds_;
     bool haveRequest_ = false;
     bool busy_ = false;
+    // The running job reads a file and its early environment has not arrived yet.
+    bool importing_ = false;
+    // What was current when the running job started: drawn again if the job fails after its early
+    // environment, or if the scene asks for it again (an undone open) while the job runs.
+    std::shared_ptr<const PreparedEnvironment> jobStart_;
     std::shared_ptr<std::atomic<bool>> cancelRunning_;
     EnvironmentCounters counters_;
     // Last request that failed, so the same bad file is not retried on every scene change.

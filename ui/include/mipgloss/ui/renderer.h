@@ -31,7 +31,8 @@ namespace mipgloss::ui {
 
 struct RenderCounters {
     std::uint64_t frames = 0;
-    std::uint64_t chainUploads = 0;       // whole chains sent to the GPU
+    std::uint64_t baseUploads = 0;        // imported base cubes sent (mirror texture and level 0)
+    std::uint64_t chainUploads = 0;       // chains sent to the GPU (their levels below the base)
     std::uint64_t irradianceUploads = 0;
     std::uint64_t meshUploads = 0;
     std::uint64_t samplersCreated = 0;
@@ -64,8 +65,13 @@ public:
     void destroy();
     bool isInitialized() const;
 
-    // Uploads the environment's chain (and irradiance map) when it is not the one uploaded last.
-    // A PreparedEnvironment never changes once made, so its identity is its version.
+    // Uploads what of the environment is not on the GPU yet: a new base (to the mirror texture
+    // and the chain texture's level 0), a new chain (its levels below the base: every builder's
+    // level 0 is the base), a new irradiance map. A PreparedEnvironment never changes once made,
+    // so its identity is its version. An early one (no chain yet) is drawn from its base with
+    // GL's box mips standing in for the chain: the `box` builder's picture, whose lobes are
+    // narrower than the schedule's, so glossy objects look sharper until the chain arrives;
+    // its chain then sends only the levels below the base.
     void setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment);
     bool hasEnvironment() const;
 
