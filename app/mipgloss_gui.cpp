@@ -11,6 +11,7 @@
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/gl_format.h"
 #include "mipgloss/ui/main_window.h"
+#include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/viewport.h"
 
 #include <QApplication>
