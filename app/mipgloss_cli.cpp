@@ -43,17 +43,25 @@ const char* kUsage = R"(mipgloss )" MIPGLOSS_VERSION R"( - blurry reflections fr
 
 usage:
   mipgloss bake [ENV] --out DIR [--builder NAME] [--size N] [--layout L]
-                [--handedness right|left] [--irradiance] [--quiet]
+                [--handedness right|left] [--irradiance] [--format exr|dds]
+                [--dds-type half|float] [--exr-compression C] [--exr-type float|half]
+                [--serial-write] [--quiet]
   mipgloss bench [--env FILE]... [--sizes 128,256,512] [--builders a,b,...]
                  [--repeat R] [--directions D] [--no-half] [--no-centre] [--shortcuts] [--plot FILE.svg]
   mipgloss --help | --version
 
-bake: builds the mip chain of an environment and writes
+bake: builds the mip chain of an environment and writes, with --format exr (the default),
   DIR/level<k>/{px,nx,py,ny,pz,nz}.exr   every level, float, OpenGL face orientation, row 0 = t 0
   DIR/irradiance/{px..nz}.exr           E(N)/pi, with --irradiance
   DIR/environment_mips.exr              one mip-mapped OpenEXR cube environment map
+  or, with --format dds,
+  DIR/environment_mips.dds              one DDS cube map (DX10 header) holding every level: faces
+                                        +X -X +Y -Y +Z -Z, each with its mips, as engines load it
+  DIR/irradiance.dds                    E(N)/pi, with --irradiance
+  and in both
   DIR/manifest.json                     builder, face size, per level: size, lambda, Phong exponent
-  The directory is replaced only when the bake is complete.
+  The files are written in parallel; the directory is replaced only when the bake is complete.
+  See docs/bake-output.md for the layouts and the compression measurements.
   ENV            environment: a lat-long (2:1) HDR, a cross (4:3 or 3:4), a strip (6:1 or
                  1:6), a folder of six face images, or one face image of a named family
                  (px/nx.., posx/negx.., right/left/top/bottom/front/back, rt/lf/up/dn/ft/bk).
@@ -68,6 +76,16 @@ bake: builds the mip chain of an environment and writes
   --handedness H right (default) or left: for skyboxes made for left-handed engines (Irrlicht,
                  Direct3D samples) front/back are swapped and faces mirrored
   --irradiance   also write the irradiance map (normal lookup for diffuse materials)
+  --format F     exr (default) or dds
+  --dds-type T   with --format dds: half (default; DXGI R16G16B16A16_FLOAT, values clamped to
+                 65504) or float (R32G32B32A32_FLOAT)
+  --exr-compression C
+                 with --format exr: OpenEXR compression, default none (filtered float texels
+                 barely compress: zip saves 7 % of the bytes at 15x the write time); lossless:
+                 none, rle, zips, zip, piz; lossy: pxr24 (float), b44, b44a (half), dwaa, dwab;
+                 zip, zips, dwaa, dwab take a level, e.g. zip:9
+  --exr-type T   with --format exr: float (default) or half (11 significant bits, clamped to 65504)
+  --serial-write write the files one at a time (to measure what writing in parallel gains)
   --quiet        no progress on stderr
 
 bench: builds the chain of each environment at each face size N with every builder and prints
@@ -120,6 +138,7 @@ int parsePositive(const std::string& flag, const std::string& value) {
 int runBake(Args args) {
     BakeRequest req;
     bool quiet = false;
+    std::string ddsOption, exrOption;  // the last format-specific option given, to refuse a mismatch
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--out") req.outDir = args.value(a);
@@ -136,6 +155,24 @@ int runBake(Args args) {
             if (!parseHandedness(v, req.import.handedness))
                 throw UsageError("--handedness is right or left, got '" + v + "'");
         } else if (a == "--irradiance") req.irradiance = true;
+        else if (a == "--format") {
+            const std::string v = args.value(a);
+            if (!parseBakeFormat(v, req.format)) throw UsageError("--format is exr or dds, got '" + v + "'");
+        } else if (a == "--dds-type") {
+            const std::string v = args.value(a);
+            if (!parseDdsType(v, req.ddsType)) throw UsageError("--dds-type is half or float, got '" + v + "'");
+            ddsOption = a;
+        } else if (a == "--exr-compression") {
+            const std::string v = args.value(a);
+            if (!isExrCompression(v)) throw UsageError("unknown OpenEXR compression '" + v + "'");
+            req.exr.compression = v;
+            exrOption = a;
+        } else if (a == "--exr-type") {
+            const std::string v = args.value(a);
+            if (v != "float" && v != "half") throw UsageError("--exr-type is float or half, got '" + v + "'");
+            req.exr.half = v == "half";
+            exrOption = a;
+        } else if (a == "--serial-write") req.parallelWrite = false;
         else if (a == "--quiet") quiet = true;
         else if (a == "--help" || a == "-h") { std::cout << kUsage; return 0; }
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
@@ -143,6 +180,8 @@ int runBake(Args args) {
         else throw UsageError("more than one environment given ('" + req.environment.string() + "', '" + a + "')");
     }
     if (req.outDir.empty()) throw UsageError("bake needs --out DIR");
+    if (req.format == BakeFormat::Exr && !ddsOption.empty()) throw UsageError(ddsOption + " needs --format dds");
+    if (req.format == BakeFormat::Dds && !exrOption.empty()) throw UsageError(exrOption + " needs --format exr");
     const bool tty = isatty(STDERR_FILENO) != 0;
     std::string lastStage;
     int lastPercent = -1;
@@ -162,7 +201,11 @@ int runBake(Args args) {
     std::printf("baked %s (%s, face %d, %zu levels, builder %s) into %s\n",
                 req.environment.empty() ? "the embedded default environment" : req.environment.c_str(),
                 layoutName(s.report.layout), s.faceSize, s.levels.size(), builderName(req.builder), s.outDir.c_str());
-    std::printf("  import %.3f s, build %.3f s, write %.3f s\n", s.importSeconds, s.buildSeconds, s.writeSeconds);
+    std::printf("  import %.3f s, build %.3f s, write %.3f s (%d files, %.1f MB, %s)\n", s.importSeconds,
+                s.buildSeconds, s.writeSeconds, s.filesWritten, static_cast<double>(s.bytesWritten) / 1e6,
+                s.format == BakeFormat::Dds
+                    ? (std::string("dds ") + ddsTypeName(s.ddsType)).c_str()
+                    : ("exr " + std::string(s.exr.half ? "half " : "float ") + s.exr.compression).c_str());
     std::printf("  cube map file: %s\n  manifest: %s\n", s.cubeFile.c_str(), (s.outDir / "manifest.json").c_str());
     return 0;
 }

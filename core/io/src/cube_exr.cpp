@@ -18,12 +18,30 @@ using namespace io_detail;
 
 namespace {
 
-void writeFloatImage(const fs::path& file, int width, int height, const std::vector<float>& rgb) {
-    auto out = OIIO::ImageOutput::create(file.string());
+constexpr float kHalfMax = 65504.0f;
+
+OIIO::TypeDesc pixelType(const ExrWriteOptions& options) {
+    return options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+}
+
+// Half files: values above the largest finite half would be stored as +Inf; clamp them instead,
+// as the previewer's RGB16F upload does.
+void clampForHalf(std::vector<float>& rgb, const ExrWriteOptions& options) {
+    if (options.half)
+        for (float& v : rgb) v = std::min(v, kHalfMax);
+}
+
+void writeRgbImage(const fs::path& file, int width, int height, std::vector<float>& rgb,
+                   const ExrWriteOptions& options) {
+    // OpenEXR whatever the extension, so that the compression means what it says.
+    auto out = OIIO::ImageOutput::create("openexr");
     if (!out) throw EnvError(file, "cannot create an image writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "zip");
-    if (!out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) ||
+    OIIO::ImageSpec spec(width, height, 3, pixelType(options));
+    spec.attribute("compression", options.compression);
+    clampForHalf(rgb, options);
+    // One write_scanlines call for the whole image, not write_image, which carries on after a failed
+    // chunk into an OpenEXR 3.1 wait that never ends (see writeCubeEnvironmentExr).
+    if (!out->open(file.string(), spec) || !out->write_scanlines(0, height, 0, OIIO::TypeDesc::FLOAT, rgb.data()) ||
         !out->close())
         throw EnvError(file, "cannot write: " + out->geterror());
 }
@@ -53,29 +71,44 @@ constexpr const char* kOrientationNote =
 
 }  // namespace
 
-void writeFaceImages(const CubeMap& cube, const fs::path& dir) {
+bool isExrCompression(const std::string& name) {
+    const auto colon = name.find(':');
+    const std::string base = name.substr(0, colon);
+    for (const char* plain : {"none", "rle", "piz", "pxr24", "b44", "b44a"})
+        if (base == plain) return colon == std::string::npos;
+    if (base != "zip" && base != "zips" && base != "dwaa" && base != "dwab") return false;
+    if (colon == std::string::npos) return true;
+    const std::string level = name.substr(colon + 1);
+    return !level.empty() && level.size() <= 4 && level.find_first_not_of("0123456789") == std::string::npos;
+}
+
+void writeFaceImage(const CubeMap& cube, Face face, const fs::path& file, const ExrWriteOptions& options) {
+    const int n = cube.size();
+    if (n < 1) throw EnvError(file, "the cube map is empty");
+    std::vector<float> rgb(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * 3);
+    std::size_t i = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const Rgb& p = cube.at(face, x, y);
+            rgb[i++] = p.x;
+            rgb[i++] = p.y;
+            rgb[i++] = p.z;
+        }
+    writeRgbImage(file, n, n, rgb, options);
+}
+
+void writeFaceImages(const CubeMap& cube, const fs::path& dir, const ExrWriteOptions& options) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw EnvError(dir, "cannot create the folder: " + ec.message());
-    const int n = cube.size();
-    if (n < 1) throw EnvError(dir, "the cube map is empty");
-    std::vector<float> rgb(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * 3);
-    for (Face f : kAllFaces) {
-        std::size_t i = 0;
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const Rgb& p = cube.at(f, x, y);
-                rgb[i++] = p.x;
-                rgb[i++] = p.y;
-                rgb[i++] = p.z;
-            }
-        writeFloatImage(dir / (std::string(faceName(f)) + ".exr"), n, n, rgb);
-    }
+    for (Face f : kAllFaces) writeFaceImage(cube, f, dir / (std::string(faceName(f)) + ".exr"), options);
 }
 
-void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
+void prepareChainFile(const MipChain& chain, const fs::path& file) {
     const int n = chain.baseSize();
     if (n < 1) throw EnvError(file, "the mip chain is empty");
+    if (chain.levelCount() > fullChainLevelCount(n))
+        throw EnvError(file, "the mip chain has more levels than a face of " + std::to_string(n) + " allows");
     for (int k = 0; k < chain.levelCount(); ++k)
         if (chain.levels[static_cast<std::size_t>(k)].size() != levelSize(n, k))
             throw EnvError(file, "mip level " + std::to_string(k) + " has face size " +
@@ -85,6 +118,11 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
         std::error_code ec;
         fs::create_directories(file.parent_path(), ec);
     }
+}
+
+void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file, const ExrWriteOptions& options) {
+    prepareChainFile(chain, file);
+    const int n = chain.baseSize();
 
     // OpenEXR's MIP levels halve each dimension of the N × 6N image (rounding down) until both are
     // 1, so the file has 1 + floor(log2 6N) levels. Level k holds the faces of size N >> k stacked
@@ -98,11 +136,11 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
     // OpenEXR whatever the extension: the envmap attribute is OpenEXR's.
     auto out = OIIO::ImageOutput::create("openexr");
     if (!out) throw EnvError(file, "cannot create an OpenEXR writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(n, 6 * n, 3, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageSpec spec(n, 6 * n, 3, pixelType(options));
     const int tile = std::min(64, n);  // OpenEXR wants one tile size for every level
     spec.tile_width = tile;
     spec.tile_height = tile;
-    spec.attribute("compression", "zip");
+    spec.attribute("compression", options.compression);
     spec.attribute("textureformat", "CubeFace Environment");  // -> OpenEXR envmap = cube
     spec.attribute("oiio:updirection", "y");
     spec.attribute("mipgloss:orientation", kOrientationNote);
@@ -144,7 +182,11 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file) {
             for (int py = 0; py < h; ++py)
                 for (int px = 0; px < w; ++px) put(px, py, mean);
         }
-        if (!out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()))
+        clampForHalf(rgb, options);
+        // One write_tiles call per level, stopping at the first failure. OpenImageIO's write_image
+        // writes in chunks and carries on after a failed one, and OpenEXR 3.1 then waits forever
+        // for the tile buffer that the failed chunk never released (a full disk hung the bake).
+        if (!out->write_tiles(0, w, 0, h, 0, 1, OIIO::TypeDesc::FLOAT, rgb.data()))
             throw fail("cannot write MIP level " + std::to_string(level));
         if (w == 1 && h == 1) break;
         w = std::max(1, w / 2);

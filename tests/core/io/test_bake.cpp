@@ -1,20 +1,31 @@
 // `bake()` for real (bake.h): the embedded default environment and a committed HDRI, baked at small
 // face sizes into a temporary folder, then the folder read back: the files bake.h promises, the
-// manifest's numbers against the λ ↔ n mapping (phong.h), the cube EXR against the chain, and the
-// atomic replacement of the output folder when a bake fails.
+// manifest's numbers against the λ ↔ n mapping (phong.h), the cube EXR against the chain, the DDS
+// format, parallel writes against serial ones, the atomic replacement of the output folder when a
+// bake fails (in the import, cancelled, or a file that cannot be written), and the command line's
+// refusal of bad bake options.
 #include "mipgloss/io/bake.h"
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/irradiance.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/io/cube_exr.h"
+#include "mipgloss/io/dds.h"
 #include "mipgloss/io/default_env.h"
 #include "mipgloss/io/import.h"
 #include "test_support.h"
 
+#include <OpenImageIO/imageio.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <csignal>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -48,6 +59,25 @@ std::vector<std::string> temporarySiblings(const fs::path& outDir) {
         if (name.rfind(prefix, 0) == 0) found.push_back(name);
     }
     return found;
+}
+
+// Every regular file under `dir`, by path relative to it, with its bytes.
+std::map<std::string, std::string> filesUnder(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        if (entry.is_regular_file()) files[fs::relative(entry.path(), dir).string()] = readText(entry.path());
+    return files;
+}
+
+// An OpenEXR file's bytes with the value of its capDate attribute (the "YYYY:MM:DD HH:MM:SS" that
+// OpenImageIO stamps on every file it writes) zeroed, so that files written in different seconds
+// compare equal when everything else is; other bytes pass through unchanged.
+std::string withoutCapDate(std::string bytes) {
+    static const std::string key("capDate\0string\0", 15);
+    const std::size_t at = bytes.find(key);
+    if (at != std::string::npos && at + key.size() + 4 + 19 <= bytes.size())
+        std::fill_n(bytes.begin() + static_cast<std::ptrdiff_t>(at + key.size() + 4), 19, '\0');
+    return bytes;
 }
 
 // A tiny reader for the manifest: the JSON bake writes is flat enough for regular expressions.
@@ -91,6 +121,17 @@ std::vector<ManifestLevel> manifestLevels(const std::string& json) {
         levels.push_back(l);
     }
     return levels;
+}
+
+// A first bake (default environment, face 8) into `out`, with a marker file added that a later
+// successful bake must remove and a failed one must leave; its manifest text.
+std::string bakeAnOldFolder(const fs::path& out) {
+    BakeRequest first;
+    first.import.faceSize = 8;
+    first.outDir = out;
+    bake(first);
+    writeBytes(out / "marker.txt", "from the first bake\n");
+    return readText(out / "manifest.json");
 }
 
 // Everything a finished bake of `chain` into `out` must hold (files, manifest, cube file).
@@ -266,13 +307,8 @@ TEST(Bake, CommittedHdriWithBoxBuilderAndIrradiance) {
 TEST(Bake, FailedBakeLeavesTheOldFolderThenASuccessfulOneReplacesIt) {
     TempDir dir;
     const fs::path out = dir / "baked";
-    BakeRequest first;
-    first.import.faceSize = 8;
-    first.outDir = out;
-    bake(first);
-    const std::string oldManifest = readText(out / "manifest.json");
+    const std::string oldManifest = bakeAnOldFolder(out);
     ASSERT_FALSE(oldManifest.empty());
-    writeBytes(out / "marker.txt", "from the first bake\n");
 
     auto expectOldFolderIntact = [&](const std::string& after) {
         SCOPED_TRACE(after);
@@ -364,4 +400,254 @@ TEST(Bake, BadInputErrorNamesTheFile) {
     BakeRequest noOut;
     noOut.import.faceSize = 8;
     EXPECT_THROW(bake(noOut), std::invalid_argument);
+}
+
+namespace {
+
+// Lowers the size of the largest file this process may write (RLIMIT_FSIZE, which binds root as
+// well, unlike folder permissions), so that a larger file fails with EFBIG mid-write as on a full
+// disk; restores the limit and SIGXFSZ's handler on destruction.
+class FileSizeLimit {
+public:
+    explicit FileSizeLimit(rlim_t bytes) {
+        getrlimit(RLIMIT_FSIZE, &saved_);
+        previous_ = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG from write() instead of the fatal signal
+        rlimit lowered = saved_;
+        lowered.rlim_cur = bytes;
+        applied_ = setrlimit(RLIMIT_FSIZE, &lowered) == 0;
+    }
+    ~FileSizeLimit() {
+        setrlimit(RLIMIT_FSIZE, &saved_);
+        std::signal(SIGXFSZ, previous_);
+    }
+    FileSizeLimit(const FileSizeLimit&) = delete;
+    FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+    bool applied() const { return applied_; }
+
+private:
+    rlimit saved_{};
+    void (*previous_)(int) = SIG_DFL;
+    bool applied_ = false;
+};
+
+// The `mipgloss` command line: MIPGLOSS_CLI where the build names it, else the one the build puts
+// beside this test's folder (<build>/app/mipgloss for <build>/tests/mipgloss_io_tests).
+fs::path cliPath() {
+#ifdef MIPGLOSS_CLI
+    return MIPGLOSS_CLI;
+#else
+    return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "app" / "mipgloss";
+#endif
+}
+
+// Runs `mipgloss ARGS` with stdout and stderr into `log`; its exit status (-1 if it did not exit).
+int runCli(const std::string& args, const fs::path& log) {
+    const std::string command = "'" + cliPath().string() + "' " + args + " > '" + log.string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+// Byte for byte, every file, apart from the time of day OpenImageIO writes into each EXR header.
+TEST(Bake, ParallelWritesGiveTheSameBytesAsSerialOnes) {
+    TempDir dir;
+    struct Case {
+        const char* what;
+        BakeFormat format;
+        ExrWriteOptions exr;
+        std::size_t files;  // with the manifest
+    };
+    // Base 32: levels 32 .. 1 (6), irradiance on.
+    for (const Case& c : {Case{"exr, bake's compression", BakeFormat::Exr, {kBakeExrCompression, false}, 6 * 6 + 6 + 2},
+                          Case{"exr zip half (OpenEXR's own threads compress)", BakeFormat::Exr, {"zip", true}, 6 * 6 + 6 + 2},
+                          Case{"dds", BakeFormat::Dds, {}, 3}}) {
+        SCOPED_TRACE(c.what);
+        BakeRequest request;
+        request.import.faceSize = 32;
+        request.irradiance = true;
+        request.format = c.format;
+        request.exr = c.exr;
+        request.outDir = dir / "parallel";
+        request.parallelWrite = true;
+        const BakeSummary parallel = bake(request);
+        request.outDir = dir / "serial";
+        request.parallelWrite = false;
+        const BakeSummary serial = bake(request);
+        const auto a = filesUnder(dir / "parallel");
+        const auto b = filesUnder(dir / "serial");
+        EXPECT_EQ(a.size(), c.files);
+        ASSERT_EQ(a.size(), b.size());
+        int stamped = 0;
+        for (const auto& [name, bytes] : a) {
+            ASSERT_TRUE(b.count(name)) << name << " only in the parallel bake";
+            EXPECT_TRUE(withoutCapDate(bytes) == withoutCapDate(b.at(name)))
+                << name << " differs (" << bytes.size() << " and " << b.at(name).size() << " bytes)";
+            if (withoutCapDate(bytes) != bytes) ++stamped;
+        }
+        // Only the EXR files carry a timestamp; the DDS files and the manifest are compared whole.
+        EXPECT_EQ(stamped, c.format == BakeFormat::Exr ? static_cast<int>(c.files) - 1 : 0);
+        EXPECT_EQ(parallel.filesWritten, static_cast<int>(c.files) - 1) << "image files, the manifest not counted";
+        EXPECT_EQ(parallel.bytesWritten, serial.bytesWritten);
+        std::uintmax_t images = 0;
+        for (const auto& [name, bytes] : a)
+            if (name != "manifest.json") images += bytes.size();
+        EXPECT_EQ(parallel.bytesWritten, images);
+    }
+}
+
+TEST(Bake, AFileThatCannotBeWrittenLeavesTheOldFolder) {
+    TempDir dir;
+    const fs::path out = dir / "baked";
+    const std::string oldManifest = bakeAnOldFolder(out);
+
+    struct Case {
+        BakeFormat format;
+        std::string compression;
+    };
+    for (const Case& c : {Case{BakeFormat::Exr, kBakeExrCompression}, Case{BakeFormat::Exr, "zip"},
+                          Case{BakeFormat::Dds, ""}}) {
+        for (const bool parallel : {true, false}) {
+            const BakeFormat format = c.format;
+            SCOPED_TRACE(std::string(bakeFormatName(format)) + " " + c.compression + (parallel ? ", parallel" : ", serial"));
+            BakeRequest request;
+            request.import.faceSize = 64;
+            request.format = format;
+            if (format == BakeFormat::Exr) request.exr.compression = c.compression;
+            request.parallelWrite = parallel;
+            request.outDir = out;
+            std::string refusal;  // printed once the limit is lifted (stdout may be a file)
+            {
+                // 100 kB: every 64² level face (49 kB of float RGB) fits; the cube file does not
+                // (the EXR's level 0 alone is 64 × 384 float RGB = 295 kB, which zip shrinks by a
+                // few per cent only; the half DDS is 262 kB).
+                FileSizeLimit limit(100 * 1024);
+                ASSERT_TRUE(limit.applied());
+                try {
+                    bake(request);
+                    ADD_FAILURE() << "a bake wrote a file larger than the file size limit";
+                } catch (const EnvError& e) {
+                    EXPECT_EQ(e.file().filename().string(),
+                              format == BakeFormat::Exr ? "environment_mips.exr" : "environment_mips.dds")
+                        << e.what();
+                    refusal = e.what();
+                }
+            }
+            std::printf("    refused as it should be: %s\n", refusal.c_str());
+            EXPECT_TRUE(fs::exists(out / "marker.txt"));
+            EXPECT_EQ(readText(out / "manifest.json"), oldManifest);
+            EXPECT_TRUE(fs::is_directory(out / "level3"));
+            const auto left = temporarySiblings(out);
+            EXPECT_TRUE(left.empty()) << "temporary sibling left behind: " << (left.empty() ? "" : left.front());
+        }
+    }
+    // Without the limit the same bake goes through and replaces the folder.
+    BakeRequest again;
+    again.import.faceSize = 64;
+    again.format = BakeFormat::Dds;
+    again.outDir = out;
+    bake(again);
+    EXPECT_FALSE(fs::exists(out / "marker.txt"));
+    EXPECT_TRUE(fs::exists(out / "environment_mips.dds"));
+}
+
+TEST(Bake, DdsFormatWritesTheChainAndIrradianceAsCubeFiles) {
+    TempDir dir;
+    constexpr int kSize = 16;
+    BakeRequest request;
+    request.import.faceSize = kSize;
+    request.irradiance = true;
+    request.format = BakeFormat::Dds;
+    request.ddsType = DdsType::Float;
+    request.outDir = dir / "baked";
+    const BakeSummary summary = bake(request);
+    EXPECT_EQ(summary.cubeFile, summary.outDir / "environment_mips.dds");
+    EXPECT_EQ(namesIn(request.outDir), (std::vector<std::string>{"environment_mips.dds", "irradiance.dds", "manifest.json"}));
+
+    // Float: the chain bit for bit, every level.
+    const CubeMap base = loadDefaultEnvironment(kSize).cube;
+    const MipChain chain = buildChain(base, kDefaultBuilder);
+    const DdsCube file = readCubeDds(request.outDir / "environment_mips.dds");
+    ASSERT_EQ(file.chain.levelCount(), chain.levelCount());
+    EXPECT_EQ(file.header.mipMapCount, static_cast<std::uint32_t>(fullChainLevelCount(kSize)));
+    for (int k = 0; k < chain.levelCount(); ++k)
+        for (Face f : kAllFaces)
+            for (int y = 0; y < levelSize(kSize, k); ++y)
+                for (int x = 0; x < levelSize(kSize, k); ++x)
+                    ASSERT_EQ(file.chain.levels[static_cast<std::size_t>(k)].at(f, x, y),
+                              chain.levels[static_cast<std::size_t>(k)].at(f, x, y))
+                        << "level " << k << " " << faceName(f) << " (" << x << ", " << y << ")";
+    const DdsCube irradiance = readCubeDds(request.outDir / "irradiance.dds");
+    const CubeMap expected = computeIrradiance(base);
+    ASSERT_EQ(irradiance.chain.levelCount(), 1);
+    ASSERT_EQ(irradiance.chain.baseSize(), expected.size());
+    for (Face f : kAllFaces)
+        for (int y = 0; y < expected.size(); ++y)
+            for (int x = 0; x < expected.size(); ++x)
+                ASSERT_EQ(irradiance.chain.levels[0].at(f, x, y), expected.at(f, x, y)) << faceName(f);
+
+    // The manifest says what was written; no level folders.
+    const std::string json = readText(request.outDir / "manifest.json");
+    EXPECT_EQ(stringField(json, "file_format"), "dds");
+    EXPECT_EQ(stringField(json, "cube_file"), "environment_mips.dds");
+    EXPECT_EQ(stringField(json, "dxgi_format"), "R32G32B32A32_FLOAT");
+    EXPECT_NE(json.find("\"irradiance\": {\"file\": \"irradiance.dds\""), std::string::npos) << json;
+    EXPECT_EQ(manifestLevels(json).size(), 0u) << "level entries with a folder: there are none";
+    const std::regex nullDir("\"dir\": null");
+    EXPECT_EQ(std::distance(std::sregex_iterator(json.begin(), json.end(), nullDir), std::sregex_iterator()),
+              chain.levelCount());
+}
+
+TEST(Bake, ExrCompressionAndPixelTypeAreApplied) {
+    TempDir dir;
+    BakeRequest request;
+    request.import.faceSize = 16;
+    request.exr = {"piz", true};
+    request.outDir = dir / "baked";
+    bake(request);
+    const std::string json = readText(request.outDir / "manifest.json");
+    EXPECT_EQ(stringField(json, "file_format"), "exr");
+    EXPECT_EQ(stringField(json, "compression"), "piz");
+    EXPECT_EQ(stringField(json, "pixel_type"), "half");
+    for (const fs::path& file : {request.outDir / "level0" / "px.exr", request.outDir / "environment_mips.exr"}) {
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in) << file;
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF) << file;
+        EXPECT_EQ(in->spec().get_string_attribute("compression"), "piz") << file;
+    }
+    // bake's default: float, kBakeExrCompression.
+    request.exr = BakeRequest().exr;
+    bake(request);
+    auto in = OIIO::ImageInput::open((request.outDir / "level0" / "px.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(in->spec().get_string_attribute("compression"), kBakeExrCompression);
+    // A compression OpenImageIO does not write is refused before anything is written.
+    request.exr.compression = "lzma";
+    request.outDir = dir / "never";
+    EXPECT_THROW(bake(request), std::invalid_argument);
+    EXPECT_FALSE(fs::exists(dir / "never"));
+}
+
+TEST(BakeCommand, BadFormatOptionsExitWithStatusTwo) {
+    const fs::path cli = cliPath();
+    ASSERT_TRUE(fs::exists(cli)) << "the mipgloss command line is built beside the tests: " << cli;
+    TempDir dir;
+    const fs::path log = dir / "log.txt";
+    const std::string out = " --out '" + (dir / "out").string() + "'";
+    for (const std::string bad :
+         {"--format ktx", "--format", "--format dds --dds-type double", "--dds-type half", "--format exr --dds-type float",
+          "--format dds --exr-compression zip", "--exr-compression lzma", "--exr-compression zip:x",
+          "--exr-compression piz:3", "--exr-type double", "--format dds --exr-type half"}) {
+        SCOPED_TRACE(bad);
+        EXPECT_EQ(runCli("bake --size 8 --quiet" + out + " " + bad, log), 2) << readText(log);
+        EXPECT_NE(readText(log).find("mipgloss: "), std::string::npos) << readText(log);
+        EXPECT_FALSE(fs::exists(dir / "out")) << "a refused bake wrote its folder";
+    }
+    // The same options, well formed, bake.
+    ASSERT_EQ(runCli("bake --size 8 --quiet --format dds --dds-type float" + out, log), 0) << readText(log);
+    EXPECT_EQ(readCubeDds(dir / "out" / "environment_mips.dds").header.dxgiFormat, kDxgiR32G32B32A32Float);
+    EXPECT_NE(readText(log).find("dds float"), std::string::npos) << readText(log);
+    ASSERT_EQ(runCli("bake --size 8 --quiet --exr-compression zip:9 --exr-type half" + out, log), 0) << readText(log);
+    EXPECT_EQ(stringField(readText(dir / "out" / "manifest.json"), "compression"), "zip:9");
 }
