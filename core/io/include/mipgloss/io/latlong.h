@@ -5,16 +5,19 @@
 // Checked on the shared HDRIs: the sun of sunset.exr lands at (0.81, 0.06, 0.59) and that of
 // sunrise.exr at (0.80, 0.14, 0.58), both above the horizon.
 //
-// Lat-long -> cube (import.h) is filtered: each texel is the solid-angle weighted mean of the
-// bilinearly interpolated image over the texel's footprint (a quadrature of strata finer than the
-// smallest texel, each weighted by its exact solid angle), so a cube coarser than the image does
-// not alias and a finer one is smooth. Near the poles the interpolation runs to the pole's single
-// value (the mean of the first or last row) rather than clamping, so pole texels carry no
-// azimuthal streaks. The few pixels far above the mean (suns) have their excess splatted with
-// exact solid-angle bookkeeping, so their energy stays where they are: the cube's weighted mean
-// matches the image's within 0.002 % on sunset.exr and sunrise.exr at their native face size 256,
-// and within 0.15 % on all eight shared HDRIs at 64 and 256 (LatLongImport tests).
+// Lat-long -> cube is filtered: each texel is the solid-angle weighted mean of the bilinearly
+// interpolated image over the texel's footprint, so a cube coarser than the image does not alias
+// and a finer one is smooth. Near the poles the interpolation runs to the pole's single value (the
+// mean of the first or last row) rather than clamping, so pole texels carry no azimuthal streaks.
+// The few pixels far above the mean (suns) have their excess splatted with exact solid-angle
+// bookkeeping, so their energy stays where they are. The conversion costs about one pass over the
+// source pixels when it shrinks and a few reads per texel when it grows (the method and its
+// figures: docs/latlong-conversion.md). The cube's weighted mean matches the image's within
+// 0.15 % on all eight shared HDRIs at face sizes 64 and 256 (LatLongConversion tests).
 #pragma once
+
+#include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/progress.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -22,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace mipgloss {
 
@@ -41,5 +45,30 @@ inline glm::dvec2 latLongCoord(const glm::dvec3& dir) {
     return {0.5 + std::atan2(dir.z, dir.x) / (2.0 * std::numbers::pi),
             std::acos(std::clamp(dir.y / len, -1.0, 1.0)) / std::numbers::pi};
 }
+
+// A lat-long image in memory: width × height linear RGB pixels, row 0 at the top (v = 0), every
+// value finite and non-negative (what import's sanitising guarantees).
+struct LatLongView {
+    int width = 0;
+    int height = 0;
+    std::span<const Rgb> pixels;  // width × height, row-major
+};
+
+// Lat-long -> cube with faces of `faceSize`, borders filled (makeSeamless). The result does not
+// depend on the number of threads. Reports stage "import" from 0 to 1 on the calling thread and
+// throws Cancelled when `progress` says stop. Throws std::invalid_argument when the sizes disagree.
+CubeMap latLongToCube(const LatLongView& image, int faceSize, const Progress& progress = {});
+
+// Which quadrature latLongToCube uses for these sizes: Scatter (every pixel cut into strata, each
+// added to the texel that holds it; chosen when the image has many more pixels than the cube has
+// texels) or Gather (a few reads per texel; chosen when the cube is about as fine or finer).
+// docs/latlong-conversion.md gives the cost model.
+enum class LatLongMethod { Scatter, Gather };
+LatLongMethod latLongMethod(int width, int height, int faceSize);
+
+// The conversion mipgloss used before, a gathered stratified quadrature (each texel visits the
+// strata in a conservative (θ, φ) box around it): the same definition of a texel, 10–1000× slower.
+// Kept as the reference that the tests and the benchmark compare latLongToCube with.
+CubeMap latLongToCubeQuadrature(const LatLongView& image, int faceSize);
 
 }  // namespace mipgloss
