@@ -12,6 +12,7 @@
 // Timings are printed, never asserted; the tests check correctness (test_latlong.cpp).
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/io/latlong.h"
+#include "cube_compare.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -30,6 +31,8 @@
 
 using namespace mipgloss;
 namespace fs = std::filesystem;
+
+using mipgloss::test::maxRelDiff;
 
 namespace {
 
@@ -117,19 +120,6 @@ double meanError(const CubeMap& cube, const glm::dvec3& want) {
     const glm::dvec3 got = cube.weightedMean();
     double worst = 0.0;
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(got[c] / want[c] - 1.0));
-    return worst;
-}
-
-double maxRelDiff(const CubeMap& a, const CubeMap& b) {
-    const glm::dvec3 m = b.weightedMean();
-    const double floor = 0.01 * std::max({m.x, m.y, m.z});
-    double worst = 0.0;
-    for (Face f : kAllFaces)
-        for (int y = 0; y < a.size(); ++y)
-            for (int x = 0; x < a.size(); ++x)
-                for (int c = 0; c < 3; ++c)
-                    worst = std::max(worst, std::fabs(static_cast<double>(a.at(f, x, y)[c] - b.at(f, x, y)[c])) /
-                                                std::max(static_cast<double>(b.at(f, x, y)[c]), floor));
     return worst;
 }
 

@@ -8,6 +8,7 @@
 //  - analytic environments (constant, linear, smooth) and a synthetic sun;
 //  - its own promises: the weighted mean, thread-count independence, progress and cancel.
 #include "mipgloss/io/latlong.h"
+#include "cube_compare.h"
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/parallel.h"
@@ -37,6 +38,8 @@
 
 using namespace mipgloss;
 namespace fs = std::filesystem;
+
+using mipgloss::test::maxRelDiff;
 
 namespace {
 
@@ -87,20 +90,6 @@ glm::dvec3 imageMean(const LatLong& ll) {
         wsum += w * ll.w;
     }
     return sum / wsum;
-}
-
-// Largest per-texel difference relative to max(|b|, 1 % of b's mean), over channels.
-double maxRelDiff(const CubeMap& a, const CubeMap& b) {
-    const glm::dvec3 m = b.weightedMean();
-    const double floor = 0.01 * std::max({m.x, m.y, m.z});
-    double worst = 0.0;
-    for (Face f : kAllFaces)
-        for (int y = 0; y < a.size(); ++y)
-            for (int x = 0; x < a.size(); ++x)
-                for (int c = 0; c < 3; ++c)
-                    worst = std::max(worst, std::fabs(static_cast<double>(a.at(f, x, y)[c] - b.at(f, x, y)[c])) /
-                                                std::max(static_cast<double>(b.at(f, x, y)[c]), floor));
-    return worst;
 }
 
 bool bitwiseEqual(const CubeMap& a, const CubeMap& b) {
