@@ -51,17 +51,6 @@ SceneDocument::MergeKey SceneDocument::newMergeKey() {
 
 SceneDocument::SceneDocument(QObject* parent) : QObject(parent), undoStack_(new QUndoStack(this)) {}
 
-NamedMaterial SceneDocument::freshMaterial(const std::string& name, const Material& material,
-                                           const std::string& libraryEntry) const {
-    NamedMaterial m;
-    m.id = scene_.nextMaterialId();
-    m.name = uniqueName(name,
-                        [this](const std::string& n) { return scene_.findMaterialNamed(n) != nullptr; });
-    m.material = material;
-    m.libraryEntry = libraryEntry;
-    return m;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Edits: each pushes one command, or nothing when it would change nothing.
 
@@ -71,7 +60,7 @@ void SceneDocument::pushInsert(int index, SceneObject object, std::optional<Name
 }
 
 int SceneDocument::addObject(SceneObject object, const Material& material) {
-    NamedMaterial own = freshMaterial(object.name, admitted(material));
+    NamedMaterial own = scene_.newMaterial(object.name, admitted(material));
     object.material = own.id;
     const QString text = tr("Add %1").arg(QString::fromStdString(object.name));
     pushInsert(objectCount(), std::move(object), std::move(own), text);
@@ -158,7 +147,7 @@ MaterialId SceneDocument::makeMaterialUnique(int index) {
     const NamedMaterial* named = namedMaterialOf(index);
     if (!named) return kNoMaterial;
     if (scene_.usersOf(named->id) <= 1) return named->id;
-    const NamedMaterial copy = freshMaterial(named->name, named->material, named->libraryEntry);
+    const NamedMaterial copy = scene_.newMaterial(named->name, named->material, named->libraryEntry);
     const QString text = tr("Give %1 a material of its own").arg(QString::fromStdString(object(index).name));
     undoStack_->push(new AssignMaterialCommand(this, index, named->id, copy.id, copy, text));
     return copy.id;
@@ -172,7 +161,7 @@ void SceneDocument::applyLibraryMaterial(int index, const LibraryMaterial& entry
         if (m.libraryEntry == entry.name && m.material == wanted) id = m.id;
     std::optional<NamedMaterial> added;
     if (id == kNoMaterial) {
-        added = freshMaterial(entry.name, wanted, entry.name);
+        added = scene_.newMaterial(entry.name, wanted, entry.name);
         id = added->id;
     }
     if (object(index).material == id) return;

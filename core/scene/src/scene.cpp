@@ -143,14 +143,19 @@ MaterialId Scene::nextMaterialId() const {
     return largest + 1;
 }
 
-MaterialId Scene::addMaterial(const std::string& name, const Material& material,
-                              const std::string& libraryEntry) {
+NamedMaterial Scene::newMaterial(const std::string& name, const Material& material,
+                                 const std::string& libraryEntry) const {
     NamedMaterial m;
     m.id = nextMaterialId();
     m.name = uniqueName(name, [this](const std::string& n) { return findMaterialNamed(n) != nullptr; });
     m.material = material;
     m.libraryEntry = libraryEntry;
-    materials.push_back(std::move(m));
+    return m;
+}
+
+MaterialId Scene::addMaterial(const std::string& name, const Material& material,
+                              const std::string& libraryEntry) {
+    materials.push_back(newMaterial(name, material, libraryEntry));
     return materials.back().id;
 }
 

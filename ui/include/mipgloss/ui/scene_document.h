@@ -157,9 +157,6 @@ private:
     void replaceDisplay(const DisplaySettings& settings);
     void notifyChanged() { emit changed(); }
 
-    // A material the scene could add now: a fresh id and `name` made unique.
-    NamedMaterial freshMaterial(const std::string& name, const Material& material,
-                                const std::string& libraryEntry = {}) const;
     void pushInsert(int index, SceneObject object, std::optional<NamedMaterial> added, const QString& text);
 
     QUndoStack* undoStack_ = nullptr;

@@ -126,7 +126,10 @@ struct Scene {
     const Material& materialOf(const SceneObject& object) const;
     // The same, to edit; throws std::out_of_range when the object has no material.
     Material& materialOf(const SceneObject& object);
-    // Adds a material under uniqueName(name) with a fresh id and returns the id.
+    // A material under uniqueName(name) with a fresh id, not yet added (an undoable edit adds it).
+    NamedMaterial newMaterial(const std::string& name, const Material& material,
+                              const std::string& libraryEntry = {}) const;
+    // Adds newMaterial(name, material, libraryEntry) and returns its id.
     MaterialId addMaterial(const std::string& name, const Material& material,
                            const std::string& libraryEntry = {});
     // Appends `object` with a material of its own named after it; returns its index.
