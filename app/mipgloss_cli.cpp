@@ -7,6 +7,7 @@
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/phong.h"
 
+#include "bench_import.h"
 #include "cli_args.h"
 
 #ifdef MIPGLOSS_WITH_UI
@@ -48,6 +49,7 @@ usage:
                 [--serial-write] [--quiet]
   mipgloss bench [--env FILE]... [--sizes 128,256,512] [--builders a,b,...]
                  [--repeat R] [--directions D] [--no-half] [--no-centre] [--shortcuts] [--plot FILE.svg]
+  mipgloss bench import [--env FILE] [--widths 2048,8192,16384] [--faces 256,512,1024] [--dir DIR]
   mipgloss --help | --version
 
 bake: builds the mip chain of an environment and writes, with --format exr (the default),
@@ -582,7 +584,7 @@ int main(int argc, char** argv) {
         }
         const std::string cmd = argv[1];
         if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-            std::cout << kUsage;
+            std::cout << kUsage << app::kImportBenchUsage;
 #ifdef MIPGLOSS_WITH_UI
             std::cout << app::kRenderUsage << app::kLibraryUsage;
 #endif
@@ -593,6 +595,8 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (cmd == "bake") return runBake(Args(argc, argv, 2));
+        if (cmd == "bench" && argc > 2 && std::string(argv[2]) == "import")
+            return app::runImportBench(Args(argc, argv, 3));
         if (cmd == "bench") return runBench(Args(argc, argv, 2));
 #ifdef MIPGLOSS_WITH_UI
         if (cmd == "render") return app::runRender(Args(argc, argv, 2), argv[0]);

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace mipgloss::io_detail {
 
 namespace fs = std::filesystem;
@@ -33,53 +35,120 @@ const std::vector<float>& srgbTable(int bits) {
 }
 
 
+// Bytes of memory a decode may take: three quarters of the machine's physical memory. A header
+// asking for more is refused before anything is allocated (a truncated or hostile file can claim
+// 1e6 × 1e6 pixels in a few bytes).
+std::uint64_t decodeBudgetBytes() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return std::uint64_t{1} << 34;  // unknown: 16 GiB
+    return static_cast<std::uint64_t>(pages) / 4 * 3 * static_cast<std::uint64_t>(pageSize);
+}
+
+std::string bytesText(std::uint64_t bytes) {
+    std::ostringstream s;
+    s.precision(3);
+    if (bytes >= (std::uint64_t{1} << 40)) s << static_cast<double>(bytes) / 1099511627776.0 << " TiB";
+    else if (bytes >= (std::uint64_t{1} << 30)) s << static_cast<double>(bytes) / 1073741824.0 << " GiB";
+    else s << static_cast<double>(bytes) / 1048576.0 << " MiB";
+    return s.str();
+}
+
+// Rows decoded per strip: the image is read strip by strip straight into its float RGB pixels, so
+// the decode holds one copy of the image plus one strip of the file's own samples, and progress
+// (and cancelling) runs during the decode. 64 is a multiple of every OpenEXR chunk height.
+constexpr int kStripRows = 64;
+
 // Reads the first subimage of an opened input; `name` is what error messages call it.
-Image readOpened(OIIO::ImageInput& in, const fs::path& name) {
+// Each strip is sanitised while it is in cache (sanitiseFinite); +Inf, which needs the whole
+// image's largest finite value, is replaced after the last strip, only when there is one.
+Image readOpened(OIIO::ImageInput& in, const fs::path& name, SanitiseCounts& counts, const Progress& progress,
+                 float p0, float p1) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw EnvError(name, "image has no pixels (" + sizeText(spec.width, spec.height) + ")");
     if (spec.depth > 1) throw EnvError(name, "volume images are not environments");
     const int nc = std::min(spec.nchannels, 3);
-    const std::size_t count = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+    const std::uint64_t count = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
+    const std::uint64_t needed = count * sizeof(Rgb);
+    if (needed > decodeBudgetBytes())
+        throw EnvError(name, "is " + sizeText(spec.width, spec.height) + " pixels: decoding it needs " +
+                                 bytesText(needed) + ", more than this machine can spare (" +
+                                 bytesText(decodeBudgetBytes()) + ", three quarters of its memory)");
     const auto base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
-    const bool integer = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::INT8 ||
-                         base == OIIO::TypeDesc::UINT16 || base == OIIO::TypeDesc::INT16 ||
-                         base == OIIO::TypeDesc::UINT32 || base == OIIO::TypeDesc::INT32;
+    const bool srgb8 = base == OIIO::TypeDesc::UINT8;
+    const bool srgb16 = base == OIIO::TypeDesc::UINT16;
+    const bool otherInteger = base == OIIO::TypeDesc::INT8 || base == OIIO::TypeDesc::INT16 ||
+                              base == OIIO::TypeDesc::UINT32 || base == OIIO::TypeDesc::INT32;
 
-    std::vector<float> values(count * static_cast<std::size_t>(nc));
     auto fail = [&] {
         std::string err = in.geterror();
         if (err.empty()) err = "unknown error";
         return EnvError(name, "cannot read the pixels (corrupt or truncated file?): " + err);
     };
-    // LDR formats are sRGB-encoded: decode through an exact table, linear inside from here on.
-    if (base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::UINT16) {
-        const int bits = base == OIIO::TypeDesc::UINT8 ? 8 : 16;
-        const std::vector<float>& table = srgbTable(bits);
-        if (bits == 8) {
-            std::vector<std::uint8_t> raw(values.size());
-            if (!in.read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data())) throw fail();
-            for (std::size_t i = 0; i < raw.size(); ++i) values[i] = table[raw[i]];
-        } else {
-            std::vector<std::uint16_t> raw(values.size());
-            if (!in.read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT16, raw.data())) throw fail();
-            for (std::size_t i = 0; i < raw.size(); ++i) values[i] = table[raw[i]];
-        }
-    } else {
-        if (!in.read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, values.data())) throw fail();
-        if (integer)
-            for (float& v : values) v = static_cast<float>(srgbToLinear(std::clamp(static_cast<double>(v), 0.0, 1.0)));
-    }
-
     Image img;
     img.width = spec.width;
     img.height = spec.height;
-    img.px.resize(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        const float* p = &values[i * static_cast<std::size_t>(nc)];
-        // Grey (and grey + alpha) replicate the first channel; a third channel makes RGB.
-        img.px[i] = nc >= 3 ? Rgb(p[0], p[1], p[2]) : Rgb(p[0]);
+    try {
+        img.px.resize(static_cast<std::size_t>(count));
+    } catch (const std::bad_alloc&) {
+        throw EnvError(name, "not enough memory to decode " + sizeText(spec.width, spec.height) +
+                                 " pixels (" + bytesText(needed) + ")");
     }
+    const std::size_t width = static_cast<std::size_t>(spec.width);
+    const bool tiled = spec.tile_width > 0;
+    // Tiled files are read by rows of tiles, scanline files by strips of kStripRows.
+    const int rowsPerStrip = tiled ? std::max(1, spec.tile_height) * std::max(1, kStripRows / std::max(1, spec.tile_height))
+                                   : kStripRows;
+    // LDR formats are sRGB-encoded: their samples go through an exact table; linear from here on.
+    std::vector<std::uint8_t> raw8;
+    std::vector<std::uint16_t> raw16;
+    const std::vector<float>* table = srgb8 ? &srgbTable(8) : srgb16 ? &srgbTable(16) : nullptr;
+    float maxFinite = 0.0f;
+    const auto readRows = [&](int y0, int y1, OIIO::TypeDesc type, void* data, OIIO::stride_t xstride) {
+        const int yb = spec.y + y0, ye = spec.y + y1;
+        return tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, yb, ye, spec.z, spec.z + 1, 0, nc,
+                                     type, data, xstride)
+                     : in.read_scanlines(0, 0, yb, ye, spec.z, 0, nc, type, data, xstride);
+    };
+    for (int y0 = 0; y0 < spec.height; y0 += rowsPerStrip) {
+        const int y1 = std::min(spec.height, y0 + rowsPerStrip);
+        Rgb* out = img.px.data() + static_cast<std::size_t>(y0) * width;
+        const std::size_t n = static_cast<std::size_t>(y1 - y0) * width;
+        if (table) {
+            const std::size_t samples = n * static_cast<std::size_t>(nc);
+            const float* t = table->data();
+            if (srgb8) {
+                raw8.resize(samples);
+                if (!readRows(y0, y1, OIIO::TypeDesc::UINT8, raw8.data(), OIIO::AutoStride)) throw fail();
+            } else {
+                raw16.resize(samples);
+                if (!readRows(y0, y1, OIIO::TypeDesc::UINT16, raw16.data(), OIIO::AutoStride)) throw fail();
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::size_t k = i * static_cast<std::size_t>(nc);
+                float v[3];
+                for (int c = 0; c < nc; ++c)
+                    v[c] = t[srgb8 ? raw8[k + static_cast<std::size_t>(c)] : raw16[k + static_cast<std::size_t>(c)]];
+                out[i] = nc >= 3 ? Rgb(v[0], v[1], v[2]) : Rgb(v[0]);
+            }
+        } else {
+            // Floats straight into the RGB pixels (a stride of one Rgb), then grey replicated.
+            if (!readRows(y0, y1, OIIO::TypeDesc::FLOAT, out, sizeof(Rgb))) throw fail();
+            if (otherInteger)
+                for (std::size_t i = 0; i < n; ++i)
+                    for (int c = 0; c < nc; ++c)
+                        out[i][c] = static_cast<float>(srgbToLinear(std::clamp(static_cast<double>(out[i][c]), 0.0, 1.0)));
+            if (nc < 3)
+                for (std::size_t i = 0; i < n; ++i) out[i] = Rgb(out[i].x);
+        }
+        const SanitiseCounts strip = sanitiseFinite({out, n}, maxFinite);
+        counts.nan += strip.nan;
+        counts.inf += strip.inf;
+        counts.negative += strip.negative;
+        reportProgress(progress, "import", p0 + (p1 - p0) * static_cast<float>(y1) / static_cast<float>(spec.height));
+    }
+    if (counts.inf > 0) replaceInfinities(img.px, maxFinite);
     return img;
 }
 
@@ -95,27 +164,25 @@ const OIIO::ImageSpec& readConfig() {
 
 // The end every read shares: the input as opened (null: OpenImageIO refused it), decoded,
 // sanitised, counted and recorded in the report.
-Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, ImportReport& report) {
+Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, ImportReport& report,
+                const Progress& progress, float p0, float p1) {
     if (!in) {
         std::string err = OIIO::geterror();
         if (err.empty()) err = "unknown error";
         throw EnvError(name, "not a readable image: " + err);
     }
-    Image img = readOpened(*in, name);
+    SanitiseCounts counts;
+    Image img = readOpened(*in, name, counts, progress, p0, p1);
     in->close();
-    addCounts(report, name, sanitise(img.px));
+    addCounts(report, name, counts);
     report.files.push_back(name);
     return img;
 }
 
 }  // namespace
 
-SanitiseCounts sanitise(std::span<Rgb> px) {
+SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite) {
     SanitiseCounts n;
-    float maxFinite = 0.0f;
-    for (const Rgb& p : px)
-        for (int c = 0; c < 3; ++c)
-            if (std::isfinite(p[c])) maxFinite = std::max(maxFinite, p[c]);
     for (Rgb& p : px) {
         for (int c = 0; c < 3; ++c) {
             float& v = p[c];
@@ -126,11 +193,25 @@ SanitiseCounts sanitise(std::span<Rgb> px) {
                 v = 0.0f;
                 ++n.negative;
             } else if (std::isinf(v)) {
-                v = maxFinite;
                 ++n.inf;
+            } else {
+                maxFinite = std::max(maxFinite, v);
             }
         }
     }
+    return n;
+}
+
+void replaceInfinities(std::span<Rgb> px, float maxFinite) {
+    for (Rgb& p : px)
+        for (int c = 0; c < 3; ++c)
+            if (std::isinf(p[c])) p[c] = maxFinite;
+}
+
+SanitiseCounts sanitise(std::span<Rgb> px) {
+    float maxFinite = 0.0f;
+    const SanitiseCounts n = sanitiseFinite(px, maxFinite);
+    if (n.inf > 0) replaceInfinities(px, maxFinite);
     return n;
 }
 
@@ -146,24 +227,25 @@ void addCounts(ImportReport& report, const fs::path& file, const SanitiseCounts&
     report.warnings.push_back(msg.str());
 }
 
-Image readImageFile(const fs::path& file, ImportReport& report) {
+Image readImageFile(const fs::path& file, ImportReport& report, const Progress& progress, float p0, float p1) {
     std::error_code ec;
     if (!fs::exists(file, ec)) throw EnvError(file, "file not found");
     if (fs::is_directory(file, ec)) throw EnvError(file, "is a directory, expected an image file");
     const auto bytes = fs::file_size(file, ec);
     if (ec) throw EnvError(file, "cannot read the file: " + ec.message());
     if (bytes == 0) throw EnvError(file, "file is empty (0 bytes)");
-    return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report);
+    return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report, progress, p0, p1);
 }
 
-Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report) {
+Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report,
+                      const Progress& progress, float p0, float p1) {
     if (bytes.empty()) throw EnvError(name, "file is empty (0 bytes)");
     OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
     // With a configuration, OpenImageIO 2.4 takes the proxy from it, not from the argument.
     OIIO::ImageSpec config = readConfig();
     void* proxy = &reader;
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    return readInput(OIIO::ImageInput::open(name, &config, &reader), name, report);
+    return readInput(OIIO::ImageInput::open(name, &config, &reader), name, report, progress, p0, p1);
 }
 
 }  // namespace mipgloss::io_detail

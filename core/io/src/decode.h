@@ -19,16 +19,8 @@
 
 namespace mipgloss::io_detail {
 
-// A decoded image: linear float RGB, row 0 at the top.
-struct Image {
-    int width = 0;
-    int height = 0;
-    std::vector<Rgb> px;
-    const Rgb& at(int x, int y) const {
-        return px[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                  static_cast<std::size_t>(x)];
-    }
-};
+// A decoded image: linear float RGB, row 0 at the top (import.h).
+using Image = DecodedImage;
 
 struct SanitiseCounts {
     std::size_t nan = 0, inf = 0, negative = 0;
@@ -38,13 +30,24 @@ struct SanitiseCounts {
 // NaN -> 0, negative (including -Inf) -> 0, +Inf -> the largest finite value among `px`.
 SanitiseCounts sanitise(std::span<Rgb> px);
 
+// The rule in two steps, for data that arrives in pieces: sanitiseFinite fixes NaN and negatives,
+// counts +Inf (leaving it) and raises `maxFinite` to the piece's largest finite value;
+// replaceInfinities then sets every +Inf to the final `maxFinite`.
+SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite);
+void replaceInfinities(std::span<Rgb> px, float maxFinite);
+
 // Adds the counts to the report with one warning naming the file (nothing when all are zero).
 void addCounts(ImportReport& report, const std::filesystem::path& file, const SanitiseCounts& n);
 
-// Decodes and sanitises an image file, recording it in the report. Throws EnvError.
-Image readImageFile(const std::filesystem::path& file, ImportReport& report);
+// Decodes and sanitises an image file, recording it in the report. Throws EnvError, also when the
+// header asks for more memory than the machine can spare (checked before allocating). Decodes by
+// strips of rows straight into the float RGB pixels (one copy of the image, plus one strip),
+// reporting stage "import" from p0 to p1 after each strip; throws Cancelled when told to stop.
+Image readImageFile(const std::filesystem::path& file, ImportReport& report, const Progress& progress = {},
+                    float p0 = 0.0f, float p1 = 0.0f);
 
 // The same from bytes in memory; `name` stands for the file (its extension names the format).
-Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report);
+Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report,
+                      const Progress& progress = {}, float p0 = 0.0f, float p1 = 0.0f);
 
 }  // namespace mipgloss::io_detail

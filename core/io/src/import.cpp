@@ -121,7 +121,7 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
     }
 
     ImportReport report;
-    const Image img = readImageFile(path, report);
+    const Image img = readImageFile(path, report, progress, 0.0f, 0.3f);
     reportProgress(progress, "import", 0.3f);
     return fromSingleImage(img, path, options, std::move(report), progress);
 }
@@ -130,8 +130,14 @@ ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> byt
                                               const ImportOptions& options, const Progress& progress) {
     if (options.layout == EnvLayout::Faces) throw EnvError(name, "six face files cannot come from memory");
     ImportReport report;
-    const Image img = readImageMemory(bytes, name, report);
+    const Image img = readImageMemory(bytes, name, report, progress, 0.0f, 0.3f);
     reportProgress(progress, "import", 0.3f);
     return fromSingleImage(img, name, options, std::move(report), progress);
 }
+
+DecodedImage decodeImage(const fs::path& file, ImportReport* report, const Progress& progress) {
+    ImportReport local;
+    return readImageFile(file, report ? *report : local, progress, 0.0f, 1.0f);
+}
+
 }  // namespace mipgloss

@@ -107,4 +107,22 @@ ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> byt
                                               const ImportOptions& options = {},
                                               const Progress& progress = {});
 
+// A decoded, sanitised image: linear float RGB, row 0 at the top. What the import reads from a
+// single image file before it converts it (decoded by strips, one copy of the image in memory; a
+// header asking for more than three quarters of the machine's memory is refused before anything
+// is allocated).
+struct DecodedImage {
+    int width = 0;
+    int height = 0;
+    std::vector<Rgb> px;  // width × height, row-major
+    const Rgb& at(int x, int y) const {
+        return px[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+    }
+};
+
+// Decodes one image file the way loadEnvironment does (colour rule and sanitising above), for
+// tools and benchmarks that time the decode on its own. Throws EnvError; Cancelled when told to.
+DecodedImage decodeImage(const std::filesystem::path& file, ImportReport* report = nullptr,
+                         const Progress& progress = {});
+
 }  // namespace mipgloss

@@ -1,0 +1,165 @@
+// The decode by strips (core/io/src/decode.cpp): every layout of file (scanline, tiled, grey,
+// half) decodes to exactly its values across strip boundaries; the sanitising rule holds across
+// strips; a header asking for absurd memory is refused before anything is allocated; progress
+// and cancelling run during the decode.
+#include "mipgloss/io/import.h"
+#include "test_support.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+using namespace mipgloss;
+namespace fs = std::filesystem;
+using test::TempDir;
+
+namespace {
+
+// A value unique to each pixel and channel, exactly representable in half (multiples of 1/64
+// below 32).
+float sample(int x, int y, int c) { return static_cast<float>((x * 7 + y * 13 + c * 5) % 2000) / 64.0f; }
+
+void writeExr(const fs::path& file, int w, int h, int channels, OIIO::TypeDesc type, int tile = 0) {
+    std::vector<float> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(channels));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < channels; ++c)
+                px[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) *
+                       static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] = sample(x, y, c);
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(w, h, channels, type);
+    if (tile > 0) spec.tile_width = spec.tile_height = tile;
+    spec.attribute("compression", "zip");
+    ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data())) << out->geterror();
+    ASSERT_TRUE(out->close()) << out->geterror();
+}
+
+// Every pixel equals what was written (grey replicated to RGB), or the first mismatch.
+void expectExact(const DecodedImage& img, int w, int h, int channels) {
+    ASSERT_EQ(img.width, w);
+    ASSERT_EQ(img.height, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float want = sample(x, y, channels >= 3 ? c : 0);
+                ASSERT_EQ(img.at(x, y)[c], want) << "pixel " << x << "," << y << " channel " << c;
+            }
+}
+
+}  // namespace
+
+TEST(DecodeStrips, ScanlineFilesTallerThanAStripDecodeExactly) {
+    TempDir dir;
+    // 150 rows: two whole strips of 64 and a partial one.
+    writeExr(dir / "float.exr", 37, 150, 3, OIIO::TypeDesc::FLOAT);
+    expectExact(decodeImage(dir / "float.exr"), 37, 150, 3);
+    writeExr(dir / "half.exr", 37, 150, 3, OIIO::TypeDesc::HALF);
+    expectExact(decodeImage(dir / "half.exr"), 37, 150, 3);
+}
+
+TEST(DecodeStrips, TiledFilesDecodeExactlyByRowsOfTiles) {
+    TempDir dir;
+    // 32-pixel tiles: the width and height are not multiples, so edge tiles are partial.
+    writeExr(dir / "tiled.exr", 100, 150, 3, OIIO::TypeDesc::HALF, 32);
+    {
+        auto in = OIIO::ImageInput::open((dir / "tiled.exr").string());
+        ASSERT_TRUE(in);
+        ASSERT_EQ(in->spec().tile_width, 32) << "the file must really be tiled for this test";
+    }
+    expectExact(decodeImage(dir / "tiled.exr"), 100, 150, 3);
+}
+
+TEST(DecodeStrips, GreyAndGreyAlphaAreReplicatedInEveryStrip) {
+    TempDir dir;
+    writeExr(dir / "grey.exr", 20, 130, 1, OIIO::TypeDesc::FLOAT);
+    expectExact(decodeImage(dir / "grey.exr"), 20, 130, 1);
+    writeExr(dir / "grey_alpha.exr", 20, 130, 2, OIIO::TypeDesc::HALF);
+    expectExact(decodeImage(dir / "grey_alpha.exr"), 20, 130, 2);
+}
+
+TEST(DecodeStrips, InfinityTakesTheLargestFiniteValueOfTheWholeImage) {
+    TempDir dir;
+    // +Inf in the first strip, the largest finite value in the last one: the replacement must wait
+    // for the whole image.
+    const int w = 8, h = 200;
+    std::vector<float> px(static_cast<std::size_t>(w * h * 3), 1.0f);
+    px[0] = std::numeric_limits<float>::infinity();
+    px[static_cast<std::size_t>((w * (h - 1) + 3) * 3 + 1)] = 42.0f;
+    px[5] = std::numeric_limits<float>::quiet_NaN();
+    px[static_cast<std::size_t>(w * 100 * 3)] = -2.0f;
+    auto out = OIIO::ImageOutput::create((dir / "inf.exr").string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open((dir / "inf.exr").string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+    ASSERT_TRUE(out->close());
+    ImportReport report;
+    const DecodedImage img = decodeImage(dir / "inf.exr", &report);
+    EXPECT_EQ(img.at(0, 0).x, 42.0f);
+    EXPECT_EQ(img.at(1, 0).z, 0.0f);    // NaN -> 0
+    EXPECT_EQ(img.at(0, 100).x, 0.0f);  // negative -> 0
+    EXPECT_EQ(report.infCount, 1u);
+    EXPECT_EQ(report.nanCount, 1u);
+    EXPECT_EQ(report.negativeCount, 1u);
+}
+
+TEST(DecodeLimits, HeaderClaimingAMillionSquaredPixelsIsRefusedBeforeAllocating) {
+    TempDir dir;
+    // A Radiance header for 1e6 × 1e6 pixels (12 TB of float RGB) and a few bytes of data. Were the
+    // pixels allocated first, the process would die; the refusal names the file and the need.
+    const fs::path file = dir / "huge.hdr";
+    std::ofstream(file, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1000000 +X 1000000\n"
+                                          << std::string(64, '\x80');
+    try {
+        decodeImage(file);
+        FAIL() << "a 1e6 x 1e6 header was decoded";
+    } catch (const EnvError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("1000000x1000000"), std::string::npos) << what;
+        EXPECT_NE(what.find("TiB"), std::string::npos) << what;
+    }
+    // The same through the environment import, which the window and bake use.
+    EXPECT_THROW(loadEnvironment(file), EnvError);
+}
+
+TEST(DecodeLimits, TruncatedLargeExrIsRefusedNamingTheFile) {
+    TempDir dir;
+    writeExr(dir / "big.exr", 512, 256, 3, OIIO::TypeDesc::HALF);
+    std::ifstream in(dir / "big.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 4000u);
+    const fs::path cut = dir / "cut.exr";
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    try {
+        decodeImage(cut);
+        FAIL() << "a file cut in half was decoded";
+    } catch (const EnvError& e) {
+        EXPECT_NE(std::string(e.what()).find(cut.string()), std::string::npos) << e.what();
+    }
+}
+
+TEST(DecodeProgress, ReportsAfterEveryStripAndCancelsMidDecode) {
+    TempDir dir;
+    writeExr(dir / "tall.exr", 16, 640, 3, OIIO::TypeDesc::HALF);  // ten strips
+    std::vector<float> seen;
+    decodeImage(dir / "tall.exr", nullptr, [&](const std::string& stage, float f) {
+        EXPECT_EQ(stage, "import");
+        seen.push_back(f);
+        return true;
+    });
+    ASSERT_EQ(seen.size(), 10u);
+    for (std::size_t i = 0; i < seen.size(); ++i)
+        EXPECT_FLOAT_EQ(seen[i], static_cast<float>(i + 1) / 10.0f);
+    int calls = 0;
+    EXPECT_THROW(decodeImage(dir / "tall.exr", nullptr, [&](const std::string&, float) { return ++calls < 4; }),
+                 Cancelled);
+    EXPECT_EQ(calls, 4) << "the decode stops at the first report that says so, not at the end";
+}
