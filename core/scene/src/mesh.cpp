@@ -1,13 +1,12 @@
 #include "mipgloss/scene/mesh.h"
 
+#include "mesh_validate.h"
+
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/ImporterT.hh>
-#include <OpenMesh/Core/IO/reader/OFFReader.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-
-#include <unistd.h>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -58,6 +57,9 @@ bool Mesh::isValid() const {
 
 namespace {
 
+using meshfile::Declared;
+using meshfile::faces;
+using meshfile::vertices;
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 using OpenMesh::FaceHandle;
 using OpenMesh::VertexHandle;
@@ -81,13 +83,6 @@ std::string extensionList() {
     return list;
 }
 
-// "1 face", "3 faces", "1 vertex", "2 vertices".
-std::string count(std::size_t n, std::string_view one, std::string_view many) {
-    return std::to_string(n) + " " + std::string(n == 1 ? one : many);
-}
-std::string faces(std::size_t n) { return count(n, "face", "faces"); }
-std::string vertices(std::size_t n) { return count(n, "vertex", "vertices"); }
-std::string atLine(std::size_t line) { return "line " + std::to_string(line) + ": "; }
 
 // ---------------------------------------------------------------------------------------------
 // Input plumbing: a read-only, seekable stream over bytes already in memory (the OBJ reader reads
@@ -196,13 +191,15 @@ public:
                 ++badIndexFaces;
                 return FaceHandle();
             }
-        distinct_.clear();
-        for (VertexHandle vh : face)
-            if (std::find(distinct_.begin(), distinct_.end(), vh) == distinct_.end()) distinct_.push_back(vh);
-        if (distinct_.size() < 3) {
+        corners_.clear();
+        for (VertexHandle vh : face) corners_.push_back(static_cast<std::uint32_t>(vh.idx()));
+        const std::vector<std::uint32_t> distinct = meshfile::distinctInOrder(corners_);
+        if (distinct.size() < 3) {
             ++repeatedVertexFaces;
             return FaceHandle();
         }
+        distinct_.clear();
+        for (std::uint32_t v : distinct) distinct_.emplace_back(static_cast<int>(v));
         FaceHandle last;
         for (std::size_t i = 1; i + 1 < distinct_.size(); ++i) {
             last = target_.add_face(distinct_[0], distinct_[i], distinct_[i + 1]);
@@ -229,338 +226,10 @@ private:
     }
 
     OMesh& target_;
+    std::vector<std::uint32_t> corners_;
     std::vector<VertexHandle> distinct_;
 };
 
-// ---------------------------------------------------------------------------------------------
-// Format checks OpenMesh does not make. Each returns what the file claims (counts), or throws.
-
-struct Declared {
-    std::optional<std::size_t> vertices;
-    std::optional<std::size_t> faces;
-    std::size_t zeroAreaFaces = 0;  // faces the reader drops before the importer sees them
-};
-
-// Text lines with numbers, for the OBJ and ASCII STL checks.
-class LineScanner {
-public:
-    explicit LineScanner(std::span<const unsigned char> bytes)
-        : p_(reinterpret_cast<const char*>(bytes.data())), end_(p_ + bytes.size()) {}
-    bool done() const { return p_ >= end_; }
-    std::size_t lineNumber() const { return line_; }
-    // The next line without its terminator.
-    std::string_view next() {
-        const char* b = p_;
-        const char* e = static_cast<const char*>(std::memchr(p_, '\n', static_cast<std::size_t>(end_ - p_)));
-        if (!e) e = end_;
-        p_ = e < end_ ? e + 1 : end_;
-        ++line_;
-        return {b, static_cast<std::size_t>(e - b)};
-    }
-
-private:
-    const char* p_;
-    const char* end_;
-    std::size_t line_ = 0;
-};
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::string_view nextToken(std::string_view& s) {
-    std::size_t b = 0;
-    while (b < s.size() && isBlank(s[b])) ++b;
-    std::size_t e = b;
-    while (e < s.size() && !isBlank(s[e])) ++e;
-    std::string_view token = s.substr(b, e - b);
-    s.remove_prefix(e);
-    return token;
-}
-
-// A decimal number as the text formats write it ("+1.5e3", "nan", "inf" included), rounded to
-// float as the file's reader would: 1e39 becomes infinite, 1e-50 zero.
-std::optional<float> parseFloat(std::string_view token) {
-    if (!token.empty() && token[0] == '+') token.remove_prefix(1);
-    if (token.empty()) return std::nullopt;
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (ptr != token.data() + token.size()) return std::nullopt;
-    // Beyond double's range from_chars leaves `value` alone; strtod says which way (HUGE_VAL or 0).
-    if (ec == std::errc::result_out_of_range)
-        value = std::strtod(std::string(token).c_str(), nullptr);
-    else if (ec != std::errc())
-        return std::nullopt;
-    return static_cast<float>(value);
-}
-
-// Three readable coordinates at the front of `rest`; `finite` says whether all three are.
-bool parseXyz(std::string_view rest, bool& finite) {
-    finite = true;
-    for (int k = 0; k < 3; ++k) {
-        const auto value = parseFloat(nextToken(rest));
-        if (!value) return false;
-        finite = finite && std::isfinite(*value);
-    }
-    return true;
-}
-
-// The offset of the first byte that no text file holds (NUL and other control codes), if any.
-std::optional<std::size_t> firstBinaryByte(std::span<const unsigned char> bytes) {
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-        const unsigned char c = bytes[i];
-        if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\v' && c != '\f') || c == 0x7f) return i;
-    }
-    return std::nullopt;
-}
-
-std::string binaryByteText(std::span<const unsigned char> bytes, std::size_t at) {
-    char text[64];
-    std::snprintf(text, sizeof text, "byte 0x%02x at offset %zu", static_cast<unsigned>(bytes[at]), at);
-    return text;
-}
-
-// OBJ: OpenMesh reads vertices with operator>> (which rejects "nan", "inf" and overflowing
-// numbers, and then skips the line, shifting every later index), drops faces with a bad index or
-// fewer than three distinct vertices without a word, and skips unreadable index tokens. So the
-// file is checked here first, with line numbers for the messages.
-Declared checkObj(std::span<const unsigned char> bytes, const std::string& file) {
-    if (const auto at = firstBinaryByte(bytes))
-        throw MeshError(file, "not an OBJ file: binary data (" + binaryByteText(bytes, *at) + ")");
-    LineScanner lines(bytes);
-    std::size_t vertexCount = 0, faceCount = 0, zeroArea = 0, nonFinite = 0, firstNonFiniteLine = 0;
-    long long maxIndex = 0;
-    std::size_t maxIndexLine = 0;
-    std::vector<long long> distinct;
-    while (!lines.done()) {
-        std::string_view rest = lines.next();
-        const std::string_view key = nextToken(rest);
-        if (key == "v") {
-            bool finite = true;
-            if (!parseXyz(rest, finite))
-                throw MeshError(file, atLine(lines.lineNumber()) +
-                                          "a vertex without three readable coordinates (truncated or corrupt file)");
-            if (!finite && nonFinite++ == 0) firstNonFiniteLine = lines.lineNumber();
-            ++vertexCount;
-        } else if (key == "f") {
-            ++faceCount;
-            distinct.clear();
-            std::size_t corners = 0;
-            for (std::string_view token = nextToken(rest); !token.empty() && token[0] != '#';
-                 token = nextToken(rest)) {
-                const std::string_view index = token.substr(0, token.find('/'));
-                long long value = 0;
-                const auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
-                if (ec != std::errc() || ptr != index.data() + index.size() || value == 0)
-                    throw MeshError(file, atLine(lines.lineNumber()) + "cannot read the face index '" +
-                                              std::string(token) + "' (corrupt file)");
-                if (value < 0) value += static_cast<long long>(vertexCount) + 1;  // counts back from here
-                if (value < 1)
-                    throw MeshError(file, atLine(lines.lineNumber()) + "the face index " + std::string(token) +
-                                              " points before the first vertex (corrupt file)");
-                if (value > maxIndex) {
-                    maxIndex = value;
-                    maxIndexLine = lines.lineNumber();
-                }
-                if (std::find(distinct.begin(), distinct.end(), value) == distinct.end()) distinct.push_back(value);
-                ++corners;
-            }
-            // A face line cut short is how a truncated file usually ends.
-            if (corners < 3)
-                throw MeshError(file, atLine(lines.lineNumber()) + "a face with only " + vertices(corners) +
-                                          " (truncated or corrupt file)");
-            if (distinct.size() < 3) ++zeroArea;
-        }
-    }
-    if (nonFinite > 0)
-        throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates, first at line " +
-                                  std::to_string(firstNonFiniteLine));
-    if (maxIndex > static_cast<long long>(vertexCount))
-        throw MeshError(file, atLine(maxIndexLine) + "a face refers to vertex " + std::to_string(maxIndex) +
-                                  ", but the file has only " + vertices(vertexCount) +
-                                  " (truncated or corrupt file)");
-    return {vertexCount, faceCount, zeroArea};
-}
-
-std::uint32_t readLe32(std::span<const unsigned char> bytes, std::size_t at) {
-    return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
-           static_cast<std::uint32_t>(bytes[at + 2]) << 16 | static_cast<std::uint32_t>(bytes[at + 3]) << 24;
-}
-
-bool startsWithWord(std::span<const unsigned char> bytes, std::string_view word) {
-    std::size_t i = 0;
-    while (i < bytes.size() && (isBlank(static_cast<char>(bytes[i])) || bytes[i] == '\n')) ++i;
-    if (bytes.size() - i < word.size()) return false;
-    for (std::size_t k = 0; k < word.size(); ++k)
-        if (std::tolower(bytes[i + k]) != word[k]) return false;
-    return true;
-}
-
-// ASCII STL: OpenMesh reads the three lines after each "outer loop" as vertices whatever they
-// hold (a cut-off facet becomes a triangle at the origin), and reads "nan" as 0.
-Declared checkAsciiStl(std::span<const unsigned char> bytes, const std::string& file) {
-    LineScanner lines(bytes);
-    std::size_t facets = 0, nonFinite = 0, firstNonFiniteLine = 0;
-    bool ended = false;  // an "endsolid" after the last facet: the file is whole
-    while (!lines.done()) {
-        const std::string_view line = lines.next();
-        if (line.find("endsolid") != std::string_view::npos || line.find("ENDSOLID") != std::string_view::npos) {
-            ended = true;
-            continue;
-        }
-        if (line.find("outer") == std::string_view::npos && line.find("OUTER") == std::string_view::npos) continue;
-        ended = false;
-        ++facets;
-        const std::size_t facetLine = lines.lineNumber();
-        for (int k = 0; k < 3; ++k) {
-            std::string_view rest = lines.done() ? std::string_view{} : lines.next();
-            const std::string_view key = nextToken(rest);
-            bool finite = true;
-            if ((key != "vertex" && key != "VERTEX") || !parseXyz(rest, finite))
-                throw MeshError(
-                    file, atLine(facetLine) + "a facet without three readable vertices (truncated or corrupt file)");
-            if (!finite && nonFinite++ == 0) firstNonFiniteLine = lines.lineNumber();
-        }
-    }
-    if (!ended) throw MeshError(file, "truncated or corrupt file: the ASCII STL does not end with 'endsolid'");
-    if (nonFinite > 0)
-        throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates, first at line " +
-                                  std::to_string(firstNonFiniteLine));
-    return {std::nullopt, facets, 0};
-}
-
-// STL comes as text or binary with nothing but the size to tell them apart (binary headers may
-// start with "solid" too): binary is 84 bytes plus 50 per triangle, the count at offset 80.
-Declared checkStl(std::span<const unsigned char> bytes, const std::string& file, bool& binary,
-                  std::vector<std::string>& warnings) {
-    const std::uint64_t triangles = bytes.size() >= 84 ? readLe32(bytes, 80) : 0;
-    const std::uint64_t binarySize = 84 + 50 * triangles;
-    binary = bytes.size() >= 84 && bytes.size() == binarySize;
-    if (!binary && startsWithWord(bytes, "solid") && !firstBinaryByte(bytes)) return checkAsciiStl(bytes, file);
-    if (bytes.size() < 84)
-        throw MeshError(file, "not an STL file: too short for binary STL (" + std::to_string(bytes.size()) +
-                                  " bytes) and not ASCII STL (no 'solid')");
-    if (bytes.size() < binarySize)
-        throw MeshError(file, "truncated or corrupt binary STL: the header announces " + std::to_string(triangles) +
-                                  " triangles (" + std::to_string(binarySize) + " bytes), the file has " +
-                                  std::to_string(bytes.size()) + " bytes");
-    if (bytes.size() > binarySize)
-        warnings.push_back(file + ": " + std::to_string(bytes.size() - binarySize) +
-                           " bytes after the last triangle ignored");
-    binary = true;
-    // Non-finite coordinates checked here: OpenMesh merges corners in an ordered map, which NaN breaks.
-    std::size_t nonFinite = 0;
-    for (std::uint64_t t = 0; t < triangles; ++t)
-        for (std::size_t k = 0; k < 3; ++k) {
-            bool finite = true;
-            for (std::size_t c = 0; c < 3; ++c) {
-                const std::uint32_t raw =
-                    readLe32(bytes, static_cast<std::size_t>(84 + 50 * t + 12 * (k + 1) + 4 * c));
-                float value;
-                std::memcpy(&value, &raw, sizeof value);
-                finite = finite && std::isfinite(value);
-            }
-            if (!finite) ++nonFinite;
-        }
-    if (nonFinite > 0)
-        throw MeshError(file,
-                        vertices(nonFinite) + " (triangle corners) with non-finite (NaN or infinite) coordinates");
-    return {std::nullopt, static_cast<std::size_t>(triangles), 0};
-}
-
-// PLY: the header names the counts; OpenMesh reads on past the end of a short file.
-Declared checkPly(std::span<const unsigned char> bytes, const std::string& file, bool& binary) {
-    const std::string_view text(reinterpret_cast<const char*>(bytes.data()),
-                                std::min<std::size_t>(bytes.size(), 1 << 16));
-    if (!(text.starts_with("ply\n") || text.starts_with("ply\r\n")))
-        throw MeshError(file, "not a PLY file (it does not start with 'ply')");
-    const std::size_t end = text.find("end_header");
-    if (end == std::string_view::npos)
-        throw MeshError(file, "not a readable PLY file: the header has no 'end_header' (truncated or corrupt file)");
-    Declared declared;
-    binary = false;
-    std::span<const unsigned char> header = bytes.first(end);
-    LineScanner lines(header);
-    while (!lines.done()) {
-        std::string_view rest = lines.next();
-        const std::string_view key = nextToken(rest);
-        if (key == "format") {
-            binary = nextToken(rest) != "ascii";
-        } else if (key == "element") {
-            const std::string_view name = nextToken(rest);
-            const std::string_view n = nextToken(rest);
-            std::size_t value = 0;
-            const auto [ptr, ec] = std::from_chars(n.data(), n.data() + n.size(), value);
-            if (ec != std::errc() || ptr != n.data() + n.size())
-                throw MeshError(
-                    file, atLine(lines.lineNumber()) + "cannot read the PLY element count '" + std::string(n) + "'");
-            if (name == "vertex") declared.vertices = value;
-            if (name == "face") declared.faces = value;
-        }
-    }
-    return declared;
-}
-
-// OFF: "OFF" (or COFF, NOFF, STOFF, ...) then the vertex, face and edge counts.
-Declared checkOff(std::span<const unsigned char> bytes, const std::string& file, bool& binary) {
-    LineScanner lines(bytes.first(std::min<std::size_t>(bytes.size(), 1 << 16)));
-    std::string_view rest;
-    while (!lines.done()) {
-        rest = lines.next();
-        std::string_view probe = rest;
-        const std::string_view first = nextToken(probe);
-        if (!first.empty() && first[0] != '#') break;
-    }
-    const std::string_view magic = nextToken(rest);
-    if (!magic.ends_with("OFF")) throw MeshError(file, "not an OFF file (it does not start with 'OFF')");
-    std::string_view afterMagic = rest;
-    binary = nextToken(afterMagic) == "BINARY";
-    Declared declared;
-    // Dimension-prefixed variants (nOFF, 4OFF) put more before the counts; leave those to OpenMesh.
-    if (binary || magic.starts_with("n") || magic.find('4') != std::string_view::npos) return declared;
-    std::array<std::size_t, 2> counts{};
-    for (std::size_t k = 0; k < counts.size();) {
-        std::string_view token = nextToken(rest);
-        if (token.empty() || token[0] == '#') {
-            if (lines.done()) return declared;
-            rest = lines.next();
-            continue;
-        }
-        const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), counts[k]);
-        if (ec != std::errc() || ptr != token.data() + token.size())
-            throw MeshError(file, atLine(lines.lineNumber()) + "cannot read the OFF vertex and face counts");
-        ++k;
-    }
-    declared.vertices = counts[0];
-    declared.faces = counts[1];
-    return declared;
-}
-
-// OM: "OM", the mesh kind, the version, then little-endian vertex, face and edge counts.
-Declared checkOm(std::span<const unsigned char> bytes, const std::string& file) {
-    if (bytes.size() < 16 || bytes[0] != 'O' || bytes[1] != 'M')
-        throw MeshError(file, "not an OpenMesh .om file (no 'OM' signature)");
-    return {readLe32(bytes, 4), readLe32(bytes, 8), 0};
-}
-
-// OpenMesh's OFF reader takes the layout (binary, colours, normals) from its last
-// can_u_read(filename) call, which reading from a stream never makes: so make it, on a file that
-// holds the header line alone. Called under openMeshMutex().
-bool primeOffReader(std::span<const unsigned char> bytes) {
-    const auto* text = reinterpret_cast<const char*>(bytes.data());
-    const std::size_t length = std::min<std::size_t>(bytes.size(), 1024);
-    const std::string_view header(text, std::find(text, text + length, '\n') - text);
-    std::error_code ec;
-    const fs::path folder = fs::temp_directory_path(ec);
-    if (ec) return false;
-    const fs::path probe = folder / ("mipgloss_off_header_" + std::to_string(::getpid()) + ".off");
-    {
-        std::ofstream out(probe, std::ios::binary);
-        out << header << '\n';
-        if (!out) return false;
-    }
-    const bool known = OpenMesh::IO::OFFReader().can_u_read(probe.string());
-    fs::remove(probe, ec);
-    return known;
-}
 
 std::string formatName(const std::string& ext) {
     std::string name = ext.substr(1);
@@ -589,35 +258,50 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     std::vector<std::string> warnings;
     Declared declared;
     bool binary = false;
+    // PLY and OFF are read by meshfile (mesh_validate.h says why), OBJ, STL and OM by OpenMesh
+    // once checked.
+    std::optional<meshfile::Polygons> polygons;
     if (ext == ".obj")
-        declared = checkObj(bytes, file);
+        declared = meshfile::checkObj(bytes, file);
     else if (ext == ".stl")
-        declared = checkStl(bytes, file, binary, warnings);
-    else if (ext == ".ply")
-        declared = checkPly(bytes, file, binary);
-    else if (ext == ".off")
-        declared = checkOff(bytes, file, binary);
+        declared = meshfile::checkStl(bytes, file, binary, warnings);
     else if (ext == ".om") {
-        declared = checkOm(bytes, file);
+        declared = meshfile::checkOm(bytes, file);
         binary = true;
+    } else {
+        polygons = ext == ".ply" ? meshfile::parsePly(bytes, file) : meshfile::parseOff(bytes, file);
+        declared = {polygons->positions.size(), polygons->faceCount(), 0};
+        warnings = std::move(polygons->warnings);
+        binary = true;  // read whole: no stream for OpenMesh to fail on
     }
 
     OMesh om;
     CheckingImporter importer(om);
     OpenMesh::IO::Options options;
     if (ext == ".stl" && binary) options += OpenMesh::IO::Options::Binary;
-    bool ok = false, pastEnd = false, streamFailed = false;
+    bool ok = false, pastEnd = false;
     std::string said;
     {
         std::lock_guard lock(openMeshMutex());
         CapturedOpenMeshMessages messages;
-        MemoryStreamBuf buffer(bytes);
-        std::istream in(&buffer);
-        if (ext == ".off" && !primeOffReader(bytes))
-            throw MeshError(file, "not a readable OFF file (unsupported header, or no temporary folder to read it)");
-        ok = OpenMesh::IO::IOManager().read(in, ext, importer, options);
-        pastEnd = buffer.readPastEnd();
-        streamFailed = in.fail();
+        if (polygons) {
+            importer.reserve(static_cast<unsigned>(polygons->positions.size()), 0,
+                             static_cast<unsigned>(polygons->faceCount()));
+            for (const auto& p : polygons->positions) importer.add_vertex(OMesh::Point(p[0], p[1], p[2]));
+            CheckingImporter::VHandles face;
+            for (std::size_t f = 0; f < polygons->faceCount(); ++f) {
+                face.clear();
+                for (std::size_t c = polygons->faceStarts[f]; c < polygons->faceStarts[f + 1]; ++c)
+                    face.emplace_back(static_cast<int>(polygons->corners[c]));
+                importer.add_face(face);
+            }
+            ok = true;
+        } else {
+            MemoryStreamBuf buffer(bytes);
+            std::istream in(&buffer);
+            ok = OpenMesh::IO::IOManager().read(in, ext, importer, options);
+            pastEnd = buffer.readPastEnd();
+        }
         said = messages.firstLine();
     }
     const std::string detail = said.empty() ? "" : " (OpenMesh: " + said + ")";
@@ -626,10 +310,6 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     if (pastEnd && (binary || !ok))
         throw MeshError(file, "truncated or corrupt file: it ends before the data its header announces" + detail);
     if (!ok) throw MeshError(file, "not a readable " + format + " file" + detail);
-    // The text readers of OFF and PLY read numbers with operator>>, which fails at the end of a
-    // short file or on a word; they go on with zeros.
-    if (!binary && streamFailed && (ext == ".off" || ext == ".ply"))
-        throw MeshError(file, "truncated or corrupt file: it ends early or holds unreadable numbers");
     if (importer.shortFaces > 0)
         throw MeshError(file, faces(importer.shortFaces) + " with fewer than 3 vertices (truncated or corrupt file)");
     if (importer.badIndexFaces > 0)
@@ -717,6 +397,22 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     return mesh;
 }
 
+// readMesh with what the libraries underneath may throw (std::bad_alloc first: the checks bound
+// memory to a multiple of the file's size, not to what the machine has) made a MeshError naming
+// the file, so every caller's one catch covers every file.
+Mesh readMeshNamed(std::span<const unsigned char> bytes, const std::string& file, const std::string& ext,
+                   MeshReport* report) {
+    try {
+        return readMesh(bytes, file, ext, report);
+    } catch (const MeshError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw MeshError(file, "not enough memory to read it (" + std::to_string(bytes.size()) + " bytes)");
+    } catch (const std::exception& e) {
+        throw MeshError(file, std::string("cannot be read: ") + e.what());
+    }
+}
+
 }  // namespace
 
 Mesh loadMesh(const fs::path& path, MeshReport* report) {
@@ -731,16 +427,21 @@ Mesh loadMesh(const fs::path& path, MeshReport* report) {
     const auto size = fs::file_size(path, ec);
     if (ec) throw MeshError(path, "cannot read the file: " + ec.message());
     if (size == 0) throw MeshError(path, "file is empty (0 bytes)");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+    std::vector<unsigned char> bytes;
+    try {
+        bytes.resize(static_cast<std::size_t>(size));
+    } catch (const std::exception&) {
+        throw MeshError(path, "not enough memory to read it (" + std::to_string(size) + " bytes)");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())))
         throw MeshError(path, "cannot read the file");
-    return readMesh(bytes, file, ext, report);
+    return readMeshNamed(bytes, file, ext, report);
 }
 
 Mesh loadMeshFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
                         MeshReport* report) {
-    return readMesh(bytes, nameForMessages, lowerExtension(nameForMessages), report);
+    return readMeshNamed(bytes, nameForMessages, lowerExtension(nameForMessages), report);
 }
 
 std::span<const char* const> meshExtensions() { return kExtensions; }

@@ -1,0 +1,83 @@
+// Mesh files checked byte by byte before anything reads them (internal to mipgloss_scene).
+//
+// OpenMesh's readers are not written for hostile input: its PLY header parser loops forever at
+// the end of a file whose header never ends, indexes the element list before any element exists
+// (a "property" line first: a crash), and its PLY and OFF body readers reserve whatever counts the
+// header claims and, once a number fails to parse, go on "reading" zeros for as many elements and
+// list entries as claimed (4e9 of them: a hang that ends in std::bad_alloc). So every format is
+// checked here first, as pure functions over the bytes, each throwing MeshError with the file name
+// and the line or byte offset:
+//   - OBJ and STL: every line or triangle is checked, then OpenMesh reads the file (checkObj,
+//     checkStl);
+//   - PLY and OFF: read here outright (parsePly, parseOff) into `Polygons`, which the loader hands
+//     to OpenMesh through its importer. Validating them for OpenMesh would take the same walk (a
+//     binary face's list size says where the next face starts, so checking the indices means
+//     decoding every value) and would then have to refuse what OpenMesh mis-reads on top (lists
+//     in binary custom properties, whitespace before "end_header", the OFF layout taken from a
+//     file name); reading them here is the smaller and the stricter program;
+//   - OM: the header's counts against the file size (checkOm); OpenMesh reads the chunks.
+// Every check costs time linear in the file size, and no count is trusted before it is compared
+// with the bytes that must hold it, so no file costs more memory than a small multiple of its size.
+#pragma once
+
+#include "mipgloss/scene/mesh.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mipgloss::meshfile {
+
+// The most corners one face may have (OBJ, OFF, PLY): a polygon is triangulated as a fan and its
+// repeated corners found by sorting, so this bounds nothing but sense; a larger list is a
+// corrupt count.
+inline constexpr std::size_t kMaxFaceCorners = 1u << 16;
+// The most vertices or faces a file may declare: indices are 32-bit (Mesh::indices).
+inline constexpr std::uint64_t kMaxElements = 0xffffffffu;
+
+// What a checked file claims, for the loader's checks after OpenMesh has read it.
+struct Declared {
+    std::optional<std::size_t> vertices;
+    std::optional<std::size_t> faces;
+    std::size_t zeroAreaFaces = 0;  // faces the reader drops before the importer sees them
+};
+
+// A mesh as a file holds it: positions, and faces as runs of vertex indices, every index below
+// positions.size() and every face at least 3 corners (the parsers guarantee both).
+struct Polygons {
+    std::vector<std::array<float, 3>> positions;
+    std::vector<std::size_t> faceStarts{0};  // face f is corners[faceStarts[f], faceStarts[f + 1])
+    std::vector<std::uint32_t> corners;
+    std::vector<std::string> warnings;  // one line each, naming the file
+
+    std::size_t faceCount() const { return faceStarts.size() - 1; }
+};
+
+// OBJ: every vertex has three numbers, every face index exists and is readable.
+Declared checkObj(std::span<const unsigned char> bytes, const std::string& file);
+// STL, ASCII or binary (`binary` says which): sizes, facets, finite coordinates.
+Declared checkStl(std::span<const unsigned char> bytes, const std::string& file, bool& binary,
+                  std::vector<std::string>& warnings);
+// OM: the signature, and the header's counts against the file size.
+Declared checkOm(std::span<const unsigned char> bytes, const std::string& file);
+
+// PLY, ASCII or binary (either byte order), read whole.
+Polygons parsePly(std::span<const unsigned char> bytes, const std::string& file);
+// OFF ("OFF", "COFF", "NOFF", "STOFF", ... in text; OpenMesh's little-endian "OFF BINARY"), read whole.
+Polygons parseOff(std::span<const unsigned char> bytes, const std::string& file);
+
+// The distinct values of `values` in the order they first appear (by sorting: a face of n corners
+// costs n log n, where comparing each corner with the ones before would cost n^2).
+std::vector<std::uint32_t> distinctInOrder(std::span<const std::uint32_t> values);
+
+// "1 face", "3 faces", "1 vertex", "2 vertices", "line 7: ".
+std::string faces(std::size_t n);
+std::string vertices(std::size_t n);
+std::string atLine(std::size_t line);
+
+}  // namespace mipgloss::meshfile
