@@ -4,11 +4,12 @@ through `mipgloss render` / `mipgloss library list`.
 
 Seeds: the OBJ files of tests/assets/meshes, and small files this script writes itself in every
 format we read (OBJ, OFF ASCII and binary, PLY ASCII and binary little/big endian, STL ASCII and
-binary, a scene JSON and a material library JSON). Each case is a seed with byte mutations (bit
+binary, OM as OpenMesh 9 writes it, a scene JSON and a material library JSON). Each case is a seed with byte mutations (bit
 flips, random or "interesting" bytes, inserts, deletes, duplicated chunks, truncation) or a
 format-aware mutation (header counts made huge, negative or zero, property and list types made
-nonsense, list sizes changed, elements duplicated or reordered, face indices out of range, JSON
-values of the wrong type or size). Every case runs with a time limit and an address-space limit,
+nonsense, list sizes changed, elements duplicated or reordered, face indices out of range, OM
+chunk header fields, topology indices and chunk sizes changed, JSON values of the wrong type or
+size). Every case runs with a time limit and an address-space limit,
 and is classified:
 
   ok        exit 0
@@ -16,6 +17,8 @@ and is classified:
   nameless  exit 1..127 without the file name on stderr
   crash     killed by a signal (segmentation fault, abort, ...)
   hang      still running at the time limit (killed)
+  no-display  the X server could not be reached, after retries (the machine, not the file: never
+            counted as a crash; the run exits 3, incomplete)
 
 It prints a table per format (with the slowest case and the largest peak memory) and exits 1 when
 any case crashed, hung or was refused without the file's name; the failing cases are copied to
@@ -111,6 +114,24 @@ SEED_OM = bytes.fromhex(
     "4f4d544203000000010000000300000000160000000000000000000000000000"
     "803f0000000000000000000000000000803f00000000f8160201000500ff0402"
     "000101ff0000000302ffe006050103e80604 1c00".replace(" ", ""))
+# A square pyramid as a polygon mesh ('P': a quad and four triangles; 144 bytes), and a
+# tetrahedron with every optional chunk OpenMesh 9 writes for a triangle mesh: vertex and face
+# normals and colours, texture coordinates, vertex status, custom vertex, face and mesh
+# properties (401 bytes). Both written by OpenMesh 9.0's write_mesh.
+SEED_OM_POLYGONS = bytes.fromhex(
+    "4f4d504205000000050000000800000000160000000000000000000000000000803f00000000000000000000803f0000"
+    "803f00000000000000000000803f000000000000003f0000003f0000803ff8160203000b00040402000e03030601000c"
+    "02020000000801010a04010501020700010f04040904020302030d0403010304e0060b0503010fe806060a090d0f1c00")
+SEED_OM_CHUNKS = bytes.fromhex(
+    "4f4d544204000000040000000600000000160000000000000000000000000000803f0000000000000000000000000000"
+    "803f0000000000000000000000000000803f20163acd13bf3acd13bf3acd13bfeada313ff23202bff23202bff23202bf"
+    "eada313ff23202bff13202bff13202bfe9da313f80100a141e0a141e0a141e0a141e400e0000003f0000803e0000003f"
+    "0000803e0000003f0000803e0000003f0000803ef8160202000900020401000b02030000000601010803010301030500"
+    "010a0302010202070303e00609030b07e8060408010728160000000000000000000080bf00000000000080bf00000000"
+    "000080bf00000000000000003acd133f3acd133f3acd133f881028323c28323c28323c28323c60000000000000000000"
+    "0000000000000000c200076d79666c6f617405666c6f61741000000000000000000000000000000000000000ca00056d"
+    "79696e7407696e7433325f741000000000000000000000000000000000000000c6c0056d797374720b7374643a3a7374"
+    "72696e6707000000050068656c6c6f1c00")
 
 
 def ply_header(fmt, nv, nf, extra=False):
@@ -360,6 +381,80 @@ def off_mutation(data, rng):
     return "\n".join(lines).encode("latin-1")
 
 
+def om_chunks(data):
+    """(header offset, entity, type, data offset, data size) of each chunk of a well-formed OM
+    seed, walked as the format says (OpenMesh's OMFormat.hh); stops at anything it does not know."""
+    nv, nf, ne = struct.unpack_from("<III", data, 4)
+    counts = {0: nv, 1: 1, 2: nf, 4: ne, 6: 2 * ne}
+    out, at = [], 16
+    while at + 2 <= len(data):
+        h = struct.unpack_from("<H", data, at)[0]
+        entity, ctype, is_float, dim, bits = (h >> 2) & 7, (h >> 5) & 15, (h >> 10) & 1, ((h >> 11) & 7) + 1, h >> 14
+        if entity == 7 or entity not in counts:
+            break
+        p = at + 2
+        if h & 2:  # named
+            p += 1 + data[p]
+        if ctype == 6:  # custom: the type name (version 2.2), a uint32 size, the bytes
+            p += 1 + data[p]
+            size = struct.unpack_from("<I", data, p)[0]
+            p += 4
+        elif ctype == 7:
+            size = counts[entity] * (1 << bits) * (3 if entity == 6 else 1)
+        elif ctype == 3:
+            size = counts[entity] * 4
+        else:
+            size = counts[entity] * dim * ((4 << bits) if is_float else (1 << bits))
+        out.append((at, entity, ctype, p, size))
+        at = p + size
+    return out
+
+
+def om_mutation(data, rng):
+    """Header counts, chunk header fields, topology indices and chunk boundaries of an OM file."""
+    data = bytearray(data)
+    chunks = om_chunks(bytes(data))
+    kind = rng.randrange(6)
+    if kind == 0 or not chunks:  # a header count
+        at = 4 + 4 * rng.randrange(3)
+        data[at:at + 4] = struct.pack("<I", rng.choice([0, 1, 2, 0xffffffff, 0x7fffffff, 0x10000, 1000,
+                                                        struct.unpack_from("<I", data, at)[0] + 1]))
+    elif kind == 1:  # a field of a chunk header: name, entity, type, float, dimension or size code
+        at = rng.choice(chunks)[0]
+        h = struct.unpack_from("<H", data, at)[0]
+        shift, width = rng.choice([(0, 1), (1, 1), (2, 3), (5, 4), (10, 1), (11, 3), (14, 2)])
+        h = (h & ~(((1 << width) - 1) << shift)) | (rng.randrange(1 << width) << shift)
+        data[at:at + 2] = struct.pack("<H", h)
+    elif kind == 2:  # an index in a topology chunk
+        topo = [c for c in chunks if c[2] == 7 and c[4] > 0]
+        if topo:
+            _, _, _, p, size = rng.choice(topo)
+            at = p + rng.randrange(size)
+            data[at] = rng.choice([0x7f, 0x80, 0xff, 0xfe, 0, 1, 2, 3, 5, 6, 7, 8, 100])
+    elif kind == 3:  # cut at a chunk boundary, or inside one
+        at, _, _, p, size = rng.choice(chunks)
+        del data[rng.choice([at, at + 1, p, p + max(size // 2, 1), p + size]):]
+    elif kind == 4:  # a chunk twice, or moved after the others
+        at, _, _, p, size = rng.choice(chunks)
+        chunk = data[at:p + size]
+        if rng.random() < 0.5:
+            data[p + size:p + size] = chunk
+        else:
+            del data[at:p + size]
+            data[-2:-2] = chunk
+    else:  # the version byte, the mesh kind, or a custom chunk's size
+        custom = [c for c in chunks if c[2] == 6]
+        r = rng.random()
+        if custom and r < 0.4:
+            p = rng.choice(custom)[3]
+            data[p - 4:p] = struct.pack("<I", rng.choice([0, 0xffffffff, 0x7fffffff, 1000, 3]))
+        elif r < 0.7:
+            data[3] = rng.choice([0x00, 0x20, 0x40, 0x41, 0x43, 0x5f, 0xff])
+        else:
+            data[2] = rng.choice(b"TQPX\0")
+    return bytes(data)
+
+
 def stl_mutation(data, rng):
     if data.startswith(b"solid seed\n"):
         lines = data.split(b"\n")
@@ -469,7 +564,7 @@ def build_formats(work, rng_seed):
                                    seed_ply_binary(pos, tris, quads, "big", True)], ply_mutation),
         "stl-ascii": (".stl", [seed_stl_ascii(pos, tris)], stl_mutation),
         "stl-binary": (".stl", [seed_stl_binary(pos, tris)], stl_mutation),
-        "om": (".om", [SEED_OM], byte_mutation),
+        "om": (".om", [SEED_OM, SEED_OM_POLYGONS, SEED_OM_CHUNKS], om_mutation),
         "scene": (".json", [seed_scene("seed.obj"), seed_scene("seed.ply")], json_mutation),
         "library": (".json", [seed_library()], json_mutation),
     }
@@ -513,11 +608,14 @@ def command(mipgloss, fmt, case, out_png):
 def run_case(cmd, case, timeout, mem_limit):
     # Qt aborts when the X server cannot be reached (another xvfb-run taking the display number
     # away): that is the machine, not the file, so such a run is repeated.
-    for _ in range(3):
+    # If the display is still gone after the retries the case is "no-display": it says nothing
+    # about the file, and it is never counted as a crash.
+    for attempt in range(4):
         result = run_once(cmd, case, timeout, mem_limit)
         if "could not connect to display" not in result[3]:
-            break
-    return result
+            return result
+        time.sleep(0.5 * (attempt + 1))
+    return ("no-display",) + tuple(result[1:])
 
 
 def run_once(cmd, case, timeout, mem_limit):
@@ -612,7 +710,7 @@ def main():
             with open(os.path.join(work, "results.tsv"), "a") as log:
                 log.write("%s\t%s\t%s\t%.2f\t%.0f\n" % (fmt, os.path.basename(case), kind, seconds, peak))
             done += 1
-            if kind in ("crash", "hang", "nameless") or (is_seed and kind != "ok"):
+            if kind in ("crash", "hang", "nameless", "no-display") or (is_seed and kind != "ok"):
                 os.makedirs(failures, exist_ok=True)
                 shutil.copy(case, failures)
                 first = stderr.strip().splitlines()[:2]
@@ -621,8 +719,8 @@ def main():
             if done % 100 == 0:
                 print("  ... %d/%d cases, %.0f s" % (done, len(jobs), time.monotonic() - t0), flush=True)
 
-    kinds = ["ok", "refused", "nameless", "crash", "hang"]
-    print("\n%-14s %6s %8s %8s %6s %5s %6s %10s %11s" % ("format", *kinds, "cases", "slowest s", "peak MiB"))
+    kinds = ["ok", "refused", "nameless", "crash", "hang", "no-display"]
+    print("\n%-14s %6s %8s %8s %6s %5s %10s %6s %10s %11s" % ("format", *kinds, "cases", "slowest s", "peak MiB"))
     bad = 0
     seeds_failed = 0
     for fmt in chosen:
@@ -630,11 +728,15 @@ def main():
         counts = {k: sum(1 for r in rows if r[0] == k) for k in kinds}
         bad += counts["nameless"] + counts["crash"] + counts["hang"]
         seeds_failed += sum(1 for r in rows if r[4] and r[0] != "ok")
-        print("%-14s %6d %8d %8d %6d %5d %6d %10.1f %11.0f" % (
+        print("%-14s %6d %8d %8d %6d %5d %10d %6d %10.1f %11.0f" % (
             fmt, *(counts[k] for k in kinds), len(rows), max(r[1] for r in rows), max(r[2] for r in rows)))
     print("\n%d cases in %.0f s (jobs %d, timeout %.0f s, address space %s); cases in %s" % (
         len(jobs), time.monotonic() - t0, args.jobs, args.timeout,
         "%d MiB" % args.mem_limit_mib if mem_limit else "unlimited", work))
+    no_display = sum(1 for rows in results.values() for r in rows if r[0] == "no-display")
+    if no_display:
+        print("fuzz-meshes: %d case(s) could not reach the X display (not the files' fault; not counted as "
+              "crashes): the run is incomplete, run it again" % no_display)
     if seeds_failed:
         print("fuzz-meshes: %d unmutated seed(s) did not load" % seeds_failed)
     if bad:
@@ -647,7 +749,7 @@ def main():
             print("(keeping %s for the failures)" % work)
         else:
             shutil.rmtree(work, ignore_errors=True)
-    return 1 if bad or seeds_failed else 0
+    return 1 if bad or seeds_failed else 3 if no_display else 0
 
 
 if __name__ == "__main__":

@@ -258,18 +258,17 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     std::vector<std::string> warnings;
     Declared declared;
     bool binary = false;
-    // PLY and OFF are read by meshfile (mesh_validate.h says why), OBJ, STL and OM by OpenMesh
+    // PLY, OFF and OM are read by meshfile (mesh_validate.h says why), OBJ and STL by OpenMesh
     // once checked.
     std::optional<meshfile::Polygons> polygons;
     if (ext == ".obj")
         declared = meshfile::checkObj(bytes, file);
     else if (ext == ".stl")
         declared = meshfile::checkStl(bytes, file, binary, warnings);
-    else if (ext == ".om") {
-        declared = meshfile::checkOm(bytes, file);
-        binary = true;
-    } else {
-        polygons = ext == ".ply" ? meshfile::parsePly(bytes, file) : meshfile::parseOff(bytes, file);
+    else {
+        polygons = ext == ".ply"   ? meshfile::parsePly(bytes, file)
+                   : ext == ".off" ? meshfile::parseOff(bytes, file)
+                                   : meshfile::parseOm(bytes, file);
         declared = {polygons->positions.size(), polygons->faceCount(), 0};
         warnings = std::move(polygons->warnings);
         binary = true;  // read whole: no stream for OpenMesh to fail on
@@ -324,7 +323,7 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     std::size_t zeroArea = importer.repeatedVertexFaces + declared.zeroAreaFaces;
     if (declared.faces && ext == ".stl") {
         zeroArea += *declared.faces - std::min(*declared.faces, importer.facesSeen);  // merged corners
-    } else if (declared.faces && ext != ".om" && importer.facesSeen + declared.zeroAreaFaces != *declared.faces) {
+    } else if (declared.faces && importer.facesSeen + declared.zeroAreaFaces != *declared.faces) {
         throw MeshError(file, "truncated or corrupt file: " + faces(*declared.faces) + " expected, " +
                                   std::to_string(importer.facesSeen + declared.zeroAreaFaces) + " could be read" +
                                   detail);
@@ -344,7 +343,7 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
             ++nonFinite;
     if (nonFinite > 0) throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates");
 
-    // Triangles in file vertex numbers; faces OpenMesh holds as polygons (OM files) become fans.
+    // Triangles in file vertex numbers (the importer adds triangles only; a polygon would become a fan).
     Mesh mesh;
     mesh.name = fs::path(file).stem().string();
     mesh.indices.reserve(3 * om.n_faces());

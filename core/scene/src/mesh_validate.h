@@ -15,7 +15,11 @@
 //     decoding every value) and would then have to refuse what OpenMesh mis-reads on top (lists
 //     in binary custom properties, whitespace before "end_header", the OFF layout taken from a
 //     file name); reading them here is the smaller and the stricter program;
-//   - OM: the header's counts against the file size (checkOm); OpenMesh reads the chunks.
+//   - OM: read here too (parseOm): OpenMesh's OMReader reserves what the header and chunks claim,
+//     trusts every topology index (a damaged file ended in a double free or a segmentation
+//     fault), so the halfedge topology is range-checked and each face's loop walked here, and
+//     the chunks we do not use (normals, colours, texture coordinates, status, custom
+//     properties) skipped by their sizes, each checked against the bytes that follow.
 // Every check costs time linear in the file size, and no count is trusted before it is compared
 // with the bytes that must hold it, so no file costs more memory than a small multiple of its size.
 #pragma once
@@ -63,13 +67,16 @@ Declared checkObj(std::span<const unsigned char> bytes, const std::string& file)
 // STL, ASCII or binary (`binary` says which): sizes, facets, finite coordinates.
 Declared checkStl(std::span<const unsigned char> bytes, const std::string& file, bool& binary,
                   std::vector<std::string>& warnings);
-// OM: the signature, and the header's counts against the file size.
+// OM: the signature, and the header's counts against the file size (parseOm's first step).
 Declared checkOm(std::span<const unsigned char> bytes, const std::string& file);
 
 // PLY, ASCII or binary (either byte order), read whole.
 Polygons parsePly(std::span<const unsigned char> bytes, const std::string& file);
 // OFF ("OFF", "COFF", "NOFF", "STOFF", ... in text; OpenMesh's little-endian "OFF BINARY"), read whole.
 Polygons parseOff(std::span<const unsigned char> bytes, const std::string& file);
+// OM (OpenMesh's own binary format, versions 2.0 to 2.2: OpenMesh 7 to 9), read whole: positions
+// and the faces' halfedge loops; every other chunk skipped by its checked size.
+Polygons parseOm(std::span<const unsigned char> bytes, const std::string& file);
 
 // The distinct values of `values` in the order they first appear (by sorting: a face of n corners
 // costs n log n, where comparing each corner with the ones before would cost n^2).
