@@ -26,12 +26,12 @@ namespace fs = std::filesystem;
 namespace mipgloss::app {
 
 const char* const kLibraryUsage = R"(
-  mipgloss library list LIB.json [--json]
-  mipgloss library add LIB.json --name NAME [--lambda L | --exponent N] [--mode reflect|normal]
+  mipgloss library list LIB.mglib [--json]
+  mipgloss library add LIB.mglib --name NAME [--lambda L | --exponent N] [--mode reflect|normal]
                        [--tint R,G,B] [--irradiance] [--grazing]
-  mipgloss library remove LIB.json NAME
-  mipgloss library rename LIB.json OLD NEW
-  mipgloss library thumbnails LIB.json [--env FILE] [--size PX] [--env-size N] --out DIR
+  mipgloss library remove LIB.mglib NAME
+  mipgloss library rename LIB.mglib OLD NEW
+  mipgloss library thumbnails LIB.mglib [--env FILE] [--size PX] [--env-size N] --out DIR
 
 library: the material library files mipgloss-gui keeps (format "mipgloss-library", docs/library.md).
   Every change is written atomically (the file is the old one or the new one, whatever happens),
@@ -40,7 +40,7 @@ library: the material library files mipgloss-gui keeps (format "mipgloss-library
   list           one material a line, tab-separated: name, lambda, Phong exponent n (mirror for
                  lambda 0), mode, tint (linear R,G,B), then "irradiance" and "sharper-at-grazing"
                  when set; --json prints the library as JSON instead
-  add            adds material NAME (a missing LIB.json is created; a name already there is an
+  add            adds material NAME (a missing LIB.mglib is created; a name already there is an
                  error); --lambda L (0 = mirror .. 8, default 0) or --exponent N (Phong, >= 0,
                  "mirror"), --mode (default reflect; normal with a high lambda is the paper's
                  diffuse), --tint (default 1,1,1), --irradiance (normal mode: the irradiance map
@@ -55,7 +55,7 @@ library: the material library files mipgloss-gui keeps (format "mipgloss-library
 
 namespace {
 
-// One library subcommand's LIB.json, and the rule that a library that cannot be read is never
+// One library subcommand's LIB.mglib, and the rule that a library that cannot be read is never
 // written: `load` throws, so nothing after it runs.
 MaterialLibrary load(const fs::path& file) {
     ui::LibraryFileReport report;
@@ -98,10 +98,10 @@ std::string requireName(const std::string& flag, const std::string& name) {
 
 // The one positional argument every subcommand starts with.
 fs::path libraryArgument(Args& args, const std::string& command) {
-    if (args.empty()) throw UsageError("library " + command + " needs LIB.json");
+    if (args.empty()) throw UsageError("library " + command + " needs LIB.mglib");
     const std::string file = args.next();
     if (!file.empty() && file[0] == '-')
-        throw UsageError("library " + command + " needs LIB.json first, got '" + file + "'");
+        throw UsageError("library " + command + " needs LIB.mglib first, got '" + file + "'");
     return file;
 }
 

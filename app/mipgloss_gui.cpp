@@ -1,7 +1,10 @@
 // mipgloss-gui: the desktop material previewer. A thin shell over mipgloss::ui::MainWindow.
 //
-//   mipgloss-gui [FILES...]                 scenes (.json), meshes, environment images or folders;
-//                                           an autosave a crashed session left is offered first
+//   mipgloss-gui [FILES...]                 scenes (.mipgloss, or .json from older versions),
+//                                           material libraries (.mglib: imported into the user's
+//                                           library), meshes, environment images or folders; an
+//                                           autosave a crashed session left is offered first
+//   mipgloss-gui --help | --version         answered without a display (before QApplication)
 //   mipgloss-gui --time-to-first-frame      prints the time from process start to the first frame
 //                                           drawn with the environment, then exits
 //   mipgloss-gui --screenshot FILE          saves the first complete frame to FILE, then exits
@@ -26,6 +29,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -57,6 +61,69 @@ double processAgeMs() {
     return nowMs > startMs ? nowMs - startMs : 0.0;
 }
 
+// Names QStandardPaths and QSettings place the user's files by: the library, autosaves
+// (~/.local/share/mipgloss/mipgloss/) and settings (~/.config/mipgloss/mipgloss.conf); --version.
+void setApplicationInfo() {
+    QCoreApplication::setOrganizationName(QStringLiteral("mipgloss"));
+    QCoreApplication::setApplicationName(QStringLiteral("mipgloss"));
+    QCoreApplication::setApplicationVersion(QStringLiteral(MIPGLOSS_VERSION));
+}
+
+// The command line, described once: the parser answering --help and --version without a display
+// is the one that reads the arguments of a real run.
+struct GuiOptions {
+    QCommandLineOption time{
+        QStringLiteral("time-to-first-frame"),
+        QStringLiteral("Print the time from process start to the first frame drawn with the "
+                       "environment ready, then exit.")};
+    QCommandLineOption screenshot{
+        QStringLiteral("screenshot"),
+        QStringLiteral("Save the first complete frame (environment built, imports done) to <file>, "
+                       "then exit."),
+        QStringLiteral("file")};
+    QCommandLineOption timeout{
+        QStringLiteral("timeout"),
+        QStringLiteral("Give up on --time-to-first-frame or --screenshot after <seconds> "
+                       "(default 300)."),
+        QStringLiteral("seconds"), QStringLiteral("300")};
+    QCommandLineOption wholeWindow{
+        QStringLiteral("whole-window"),
+        QStringLiteral("With --screenshot: the whole window (panels and all), not just the view.")};
+
+    void describe(QCommandLineParser& parser) const {
+        parser.setApplicationDescription(
+            QStringLiteral("Blurry, glossy and diffuse reflections from one cube-map mip chain"));
+        parser.addHelpOption();
+        parser.addVersionOption();
+        parser.addOptions({time, screenshot, timeout, wholeWindow});
+        parser.addPositionalArgument(
+            QStringLiteral("files"),
+            QStringLiteral("Scene (.mipgloss or .json), material library (.mglib), mesh or "
+                           "environment files to open."),
+            QStringLiteral("[files...]"));
+    }
+};
+
+// QApplication needs a display; --help and --version must answer without one (a terminal on a
+// server, help2man at package build time), so they are spotted before it is made.
+bool asksForHelpOrVersion(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--") == 0) return false;
+        for (const char* flag : {"-h", "-?", "--help", "--help-all", "-v", "--version"})
+            if (std::strcmp(argv[i], flag) == 0) return true;
+    }
+    return false;
+}
+
+// The process's resident high-water mark (Linux VmHWM), for --time-to-first-frame; 0 elsewhere.
+double peakMemoryMiB() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+    return 0.0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,48 +132,32 @@ int main(int argc, char** argv) {
     const double beforeMainMs = processAgeMs();
     auto sinceStartMs = [&] { return beforeMainMs + static_cast<double>(clock.nsecsElapsed()) * 1e-6; };
 
+    const GuiOptions options;
+    if (asksForHelpOrVersion(argc, argv)) {
+        QCoreApplication core(argc, argv);
+        setApplicationInfo();
+        // Only here, where no file is placed: --version names this program, not the data folder.
+        QCoreApplication::setApplicationName(QStringLiteral("mipgloss-gui"));
+        QCommandLineParser parser;
+        options.describe(parser);
+        parser.process(core);  // prints the help or the version and exits
+        return 0;
+    }
+
     mipgloss::ui::setDefaultSurfaceFormat();  // before any widget or context exists
     QApplication app(argc, argv);
-    // QStandardPaths and QSettings place the user's files by these: the library, autosaves
-    // (~/.local/share/mipgloss/mipgloss/) and settings (~/.config/mipgloss/mipgloss.conf).
-    QApplication::setOrganizationName(QStringLiteral("mipgloss"));
-    QApplication::setApplicationName(QStringLiteral("mipgloss"));
+    setApplicationInfo();
     QApplication::setWindowIcon(QIcon(QStringLiteral(":/mipgloss/desktop/mipgloss.png")));
-    QApplication::setApplicationVersion(QStringLiteral(MIPGLOSS_VERSION));
     QApplication::setDesktopFileName(QStringLiteral("mipgloss"));
 
     QCommandLineParser parser;
-    parser.setApplicationDescription(
-        QStringLiteral("Blurry, glossy and diffuse reflections from one cube-map mip chain"));
-    parser.addHelpOption();
-    parser.addVersionOption();
-    const QCommandLineOption timeOption(
-        QStringLiteral("time-to-first-frame"),
-        QStringLiteral("Print the time from process start to the first frame drawn with the "
-                       "environment ready, then exit."));
-    const QCommandLineOption screenshotOption(
-        QStringLiteral("screenshot"),
-        QStringLiteral("Save the first complete frame (environment built, imports done) to <file>, "
-                       "then exit."),
-        QStringLiteral("file"));
-    const QCommandLineOption timeoutOption(
-        QStringLiteral("timeout"),
-        QStringLiteral("Give up on --time-to-first-frame or --screenshot after <seconds> "
-                       "(default 300)."),
-        QStringLiteral("seconds"), QStringLiteral("300"));
-    const QCommandLineOption wholeWindowOption(
-        QStringLiteral("whole-window"),
-        QStringLiteral("With --screenshot: the whole window (panels and all), not just the view."));
-    parser.addOptions({timeOption, screenshotOption, timeoutOption, wholeWindowOption});
-    parser.addPositionalArgument(QStringLiteral("files"),
-                                 QStringLiteral("Scene (.json), mesh or environment files to open."),
-                                 QStringLiteral("[files...]"));
+    options.describe(parser);
     parser.process(app);
 
-    const bool timing = parser.isSet(timeOption);
-    const QString screenshot = parser.value(screenshotOption);
+    const bool timing = parser.isSet(options.time);
+    const QString screenshot = parser.value(options.screenshot);
     bool timeoutOk = false;
-    const int timeoutSeconds = parser.value(timeoutOption).toInt(&timeoutOk);
+    const int timeoutSeconds = parser.value(options.timeout).toInt(&timeoutOk);
     if (!timeoutOk || timeoutSeconds <= 0) {
         std::fprintf(stderr, "mipgloss-gui: --timeout needs a positive number of seconds\n");
         return 1;
@@ -146,15 +197,15 @@ int main(int argc, char** argv) {
         done = true;
         if (timing) {
             std::printf("first frame: %.0f ms (imported cube); complete frame: %.0f ms (environment "
-                        "ready at %.0f ms)\n",
-                        firstFrameMs, sinceStartMs(), environmentReadyMs);
+                        "ready at %.0f ms); peak memory %.0f MiB\n",
+                        firstFrameMs, sinceStartMs(), environmentReadyMs, peakMemoryMiB());
             std::fflush(stdout);
         }
         // Outside paintGL: grabbing renders the widget again.
         QTimer::singleShot(0, &app, [&] {
             if (!screenshot.isEmpty()) {
-                const QImage image = parser.isSet(wholeWindowOption) ? window.grab().toImage()
-                                                                     : viewport->grabFramebuffer();
+                const QImage image = parser.isSet(options.wholeWindow) ? window.grab().toImage()
+                                                                       : viewport->grabFramebuffer();
                 QByteArray format = QFileInfo(screenshot).suffix().toUpper().toLatin1();
                 if (format.isEmpty()) format = "PNG";
                 try {

@@ -39,7 +39,7 @@ namespace fs = std::filesystem;
 namespace mipgloss::app {
 
 const char* const kRenderUsage = R"(
-  mipgloss render [SCENE.json] [--env FILE] [--mesh FILE]... [--library LIB.json --material NAME]
+  mipgloss render [SCENE.mipgloss] [--env FILE] [--mesh FILE]... [--library LIB.mglib --material NAME]
                   [--lambda L | --exponent N] [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
@@ -49,10 +49,10 @@ const char* const kRenderUsage = R"(
 render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X display; under
   CI: xvfb-run). With no scene and no mesh: the default scene (the paper's Figure 1). With --env
   alone: just the environment. Meshes are placed in a row and framed whatever their scale.
-  SCENE.json     a scene saved by mipgloss-gui
+  SCENE.mipgloss a scene saved by mipgloss-gui (older .json scenes too)
   --env FILE     environment (as for bake); replaces the scene's
   --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM), repeatable; replaces the scene's objects
-  --library LIB.json --material NAME
+  --library LIB.mglib --material NAME
                  every object wears material NAME of the library (one shared material);
                  --lambda, --exponent and --mode, when given too, change it
   --lambda L     every object's blur λ: the Phong lobe n = 3*128^2*4^-L - 1, the same at any
@@ -161,7 +161,7 @@ int runRender(Args args, const char* argv0) {
     }
     if (!outPath) throw UsageError("render needs --out IMAGE");
     if (libraryPath.has_value() != libraryMaterial.has_value())
-        throw UsageError("--library LIB.json and --material NAME go together");
+        throw UsageError("--library LIB.mglib and --material NAME go together");
     // Read before the OpenGL session starts, so a bad library is reported at once.
     const std::optional<LibraryMaterial> libraryMaterialEntry =
         libraryPath ? std::optional(libraryEntry(*libraryPath, *libraryMaterial)) : std::nullopt;

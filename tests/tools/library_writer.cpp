@@ -12,7 +12,7 @@
 
 int main(int argc, char** argv) {
     if (argc != 2) {
-        std::fprintf(stderr, "usage: mipgloss_library_writer LIB.json\n");
+        std::fprintf(stderr, "usage: mipgloss_library_writer LIB.mglib\n");
         return 2;
     }
     const std::filesystem::path file = argv[1];

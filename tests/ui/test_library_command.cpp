@@ -183,7 +183,7 @@ TEST(LibraryCommand, MistakesExitOneForTheFileAndTwoForUsage) {
         {{"library", "add", q(lib)}, 2, "--name"},
         {{"library", "rename", q(lib), "mirror", ""}, 2, "empty"},
         {{"library", "remove", q(lib)}, 2, "NAME"},
-        {{"library", "list"}, 2, "LIB.json"},
+        {{"library", "list"}, 2, "LIB.mglib"},
         {{"library", "frobnicate", q(lib)}, 2, "frobnicate"},
         {{"library"}, 2, "subcommand"},
         {{"library", "thumbnails", q(lib)}, 2, "--out"},

@@ -133,9 +133,9 @@ TEST(Saving, ModifiedMarkFollowsTheSavedScene) {
     // Save of a scene never saved is Save As: the dialog's file.
     win.saveAs = dir.filePath(QStringLiteral("gold"));
     ASSERT_TRUE(w.save()) << w.lastMessage().toStdString();
-    EXPECT_EQ(w.sceneFile(), dir.filePath(QStringLiteral("gold.json")));
+    EXPECT_EQ(w.sceneFile(), dir.filePath(QStringLiteral("gold.mipgloss")));
     EXPECT_FALSE(w.isWindowModified());
-    EXPECT_EQ(w.windowTitle(), QStringLiteral("gold.json[*] — mipgloss"));
+    EXPECT_EQ(w.windowTitle(), QStringLiteral("gold.mipgloss[*] — mipgloss"));
     EXPECT_EQ(asFile(loadScene(w.sceneFile().toStdString())), asFile(w.document()->scene()));
 
     // Edit, undo back to the saved state, redo, save with Ctrl+S's action (no dialog now).

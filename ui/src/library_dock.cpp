@@ -31,7 +31,13 @@ namespace {
 std::filesystem::path toPath(const QString& path) { return std::filesystem::path(path.toStdU16String()); }
 QString fromPath(const std::filesystem::path& path) { return QString::fromStdU16String(path.u16string()); }
 
-QString libraryFilter() { return QObject::tr("Material libraries (*.json);;All files (*)"); }
+// Libraries are saved as .mglib (the type the desktop's MIME database knows); older ones are .json.
+QString libraryOpenFilter() { return QObject::tr("Material libraries (*.mglib *.json);;All files (*)"); }
+QString librarySaveFilter() { return QObject::tr("Material libraries (*.mglib);;All files (*)"); }
+QString withLibrarySuffix(QString path) {
+    if (!path.isEmpty() && QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".mglib");
+    return path;
+}
 
 }  // namespace
 
@@ -296,21 +302,23 @@ bool LibraryDock::exportLibrary(const QString& path) {
 }
 
 void LibraryDock::importLibraryDialog() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import Library"), lastDirectory_, libraryFilter());
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import Library"), lastDirectory_, libraryOpenFilter());
     if (path.isEmpty()) return;
     lastDirectory_ = QFileInfo(path).absolutePath();
     importLibrary(path);
 }
 
 void LibraryDock::exportLibraryDialog() {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Export Library"), lastDirectory_, libraryFilter());
+    const QString path = withLibrarySuffix(
+        QFileDialog::getSaveFileName(this, tr("Export Library"), lastDirectory_, librarySaveFilter()));
     if (path.isEmpty()) return;
     lastDirectory_ = QFileInfo(path).absolutePath();
     exportLibrary(path);
 }
 
 void LibraryDock::saveLibraryAsDialog() {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save Library As"), lastDirectory_, libraryFilter());
+    const QString path = withLibrarySuffix(
+        QFileDialog::getSaveFileName(this, tr("Save Library As"), lastDirectory_, librarySaveFilter()));
     if (path.isEmpty()) return;
     lastDirectory_ = QFileInfo(path).absolutePath();
     if (toPath(path) == library_->file() && library_->isDetached()) {

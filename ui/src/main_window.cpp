@@ -48,7 +48,7 @@ namespace mipgloss::ui {
 
 namespace {
 
-enum class DropKind { None, Scene, Mesh, Environment };
+enum class DropKind { None, Scene, Library, Mesh, Environment };
 
 // Image formats the environment import reads (OpenImageIO); a directory is a six-face set.
 const QStringList kEnvironmentSuffixes = {"exr", "hdr", "png", "jpg", "jpeg", "tif", "tiff", "pfm"};
@@ -57,7 +57,10 @@ DropKind classify(const QString& path) {
     const QFileInfo info(path);
     if (info.isDir()) return DropKind::Environment;
     const QString suffix = info.suffix().toLower();
-    if (suffix == QLatin1String("json")) return DropKind::Scene;
+    // Scenes are saved as .mipgloss; .json is what older versions saved. A .mglib is a material
+    // library: its materials are imported into the user's library (File → Import library).
+    if (suffix == QLatin1String("mipgloss") || suffix == QLatin1String("json")) return DropKind::Scene;
+    if (suffix == QLatin1String("mglib")) return DropKind::Library;
     for (const char* ext : meshExtensions())
         if (QLatin1String(ext + 1) == suffix) return DropKind::Mesh;  // ext is ".obj"
     if (kEnvironmentSuffixes.contains(suffix)) return DropKind::Environment;
@@ -399,7 +402,7 @@ void MainWindow::setDefaultPrompts() {
     };
     prompts_.saveFileName = [this](const QString& suggestion) {
         return QFileDialog::getSaveFileName(this, tr("Save scene as"), suggestion,
-                                            tr("mipgloss scenes (*.json)"));
+                                            tr("mipgloss scenes (*.mipgloss)"));
     };
     prompts_.restoreAutosave = [this](const QString& question) {
         QMessageBox box(QMessageBox::Question, tr("mipgloss"), question, QMessageBox::NoButton, this);
@@ -523,8 +526,8 @@ bool MainWindow::save() { return sceneFile_.isEmpty() ? saveAs() : saveScene(sce
 
 bool MainWindow::saveAs() {
     const QString suggestion =
-        sceneFile_.isEmpty() ? QFileInfo(lastDirectory_, tr("untitled.json")).filePath() : sceneFile_;
-    const QString path = withSuffix(prompts_.saveFileName(suggestion), QStringLiteral("json"));
+        sceneFile_.isEmpty() ? QFileInfo(lastDirectory_, tr("untitled.mipgloss")).filePath() : sceneFile_;
+    const QString path = withSuffix(prompts_.saveFileName(suggestion), QStringLiteral("mipgloss"));
     if (path.isEmpty()) return false;
     return saveScene(path);
 }
@@ -725,7 +728,7 @@ void MainWindow::openSceneDialog() {
     // Asked before the file dialog, as every other application does.
     if (!maybeSave()) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), lastDirectory_,
-                                                      tr("mipgloss scenes (*.json)"));
+                                                      tr("mipgloss scenes (*.mipgloss *.json)"));
     if (!path.isEmpty()) loadSceneFile(path);
 }
 
@@ -781,10 +784,11 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::openFiles(const QStringList& paths) {
     QString scene, environment;
-    QStringList meshes, unknown;
+    QStringList libraries, meshes, unknown;
     for (const QString& path : paths) {
         switch (classify(path)) {
             case DropKind::Scene: if (scene.isEmpty()) scene = path; break;
+            case DropKind::Library: libraries << path; break;
             case DropKind::Mesh: meshes << path; break;
             case DropKind::Environment: environment = path; break;
             case DropKind::None: unknown << path; break;
@@ -794,6 +798,7 @@ void MainWindow::openFiles(const QStringList& paths) {
     if (!scene.isEmpty()) openScene(scene);
     if (!meshes.isEmpty()) importMeshes(meshes);
     if (!environment.isEmpty()) openEnvironment(environment);
+    for (const QString& library : libraries) libraryDock_->importLibrary(library);
     if (!unknown.isEmpty())
         showMessage(tr("Not a scene, mesh or environment (or not found): %1")
                         .arg(unknown.join(QStringLiteral(", "))),
