@@ -29,12 +29,13 @@ namespace fs = std::filesystem;
 
 const char* kImportBenchUsage = R"(
   mipgloss bench import [--env FILE] [--widths 2048,8192,16384] [--faces 256,512,1024]
-                        [--dir DIR] [--keep]
+                        [--dir DIR] [--keep] [--input FILE]
 
 bench import: for each width W, makes a W x W/2 lat-long input from the environment (bilinear
   resampling of its lat-long, written as half-float, zip-compressed OpenEXR: what HDRI sites ship),
   then prints per face size N, each stage timed on its own:
-    decode    OpenImageIO decode of the input, by strips, into float RGB (once per width)
+    oiio      OpenImageIO's own whole-image read of the file as float (the floor; once per width)
+    decode    mipgloss's decode of the input (by strips, into float RGB, sanitised; once per width)
     convert   lat-long -> cube at face N (latLongToCube)
     filter    the chain's build (bake's build stage, default builder)
     write     bake's parallel write of every level
@@ -47,6 +48,7 @@ bench import: for each width W, makes a W x W/2 lat-long input from the environm
   --faces LIST  face sizes (default 256,512,1024)
   --dir DIR     where the inputs and bakes go (default: a new folder in the temporary directory)
   --keep        keep the inputs and bakes (default: removed at the end)
+  --input FILE  measure this lat-long file as it is instead of making inputs (repeatable)
 )";
 
 namespace {
@@ -127,6 +129,21 @@ void writeInput(const DecodedImage& source, int width, const fs::path& file) {
     if (!out->close()) throw std::runtime_error(file.string() + ": " + out->geterror());
 }
 
+// The yardstick: OpenImageIO's own whole-image read of the file's first three channels as float,
+// with nothing of ours around it. Seconds.
+double plainReadSeconds(const fs::path& file) {
+    const auto t0 = Clock::now();
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) throw std::runtime_error(file.string() + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const int nc = std::min(spec.nchannels, 3);
+    std::vector<float> px(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+                          static_cast<std::size_t>(nc));
+    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, px.data()))
+        throw std::runtime_error(file.string() + ": " + in->geterror());
+    return secondsSince(t0);
+}
+
 DecodedImage sourceImage(const fs::path& env, const fs::path& dir) {
     if (!env.empty()) return decodeImage(env);
     const fs::path file = dir / "default_env.exr";
@@ -142,6 +159,7 @@ int runImportBench(Args args) {
     fs::path env, dir;
     std::vector<int> widths{2048, 8192, 16384}, faces{256, 512, 1024};
     bool keep = false;
+    std::vector<fs::path> inputs;
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--env") env = args.value(a);
@@ -152,6 +170,7 @@ int runImportBench(Args args) {
         } else if (a == "--faces") faces = parseSizes(a, args.value(a), 1);
         else if (a == "--dir") dir = args.value(a);
         else if (a == "--keep") keep = true;
+        else if (a == "--input") inputs.emplace_back(args.value(a));
         else if (a == "--help" || a == "-h") { std::cout << kImportBenchUsage; return 0; }
         else throw UsageError("unknown option '" + a + "'");
     }
@@ -159,23 +178,31 @@ int runImportBench(Args args) {
     if (madeDir) dir = fs::temp_directory_path() / ("mipgloss-bench-import-" + std::to_string(::getpid()));
     fs::create_directories(dir);
 
-    const DecodedImage source = sourceImage(env, dir);
-    std::printf("# mipgloss bench import: big lat-long environments, stage by stage\n");
-    std::printf("# source %s (%dx%d), inputs half-float zip OpenEXR in %s; %u threads\n",
-                env.empty() ? "embedded default environment" : env.string().c_str(), source.width,
-                source.height, dir.string().c_str(), std::thread::hardware_concurrency());
+    std::printf("# mipgloss bench import: big lat-long environments, stage by stage; %u threads\n",
+                std::thread::hardware_concurrency());
+    DecodedImage source;
+    if (inputs.empty()) {
+        source = sourceImage(env, dir);
+        std::printf("# source %s (%dx%d), inputs half-float zip OpenEXR in %s\n",
+                    env.empty() ? "embedded default environment" : env.string().c_str(), source.width,
+                    source.height, dir.string().c_str());
+        for (int width : widths) inputs.push_back(dir / ("latlong_" + std::to_string(width) + ".exr"));
+    }
+    const bool generated = source.width > 0;  // the user's own --input files are never removed
     std::printf("# seconds per stage; peak = resident high-water mark in MiB (decode alone, whole bake)\n");
-    std::printf("%-12s %9s %5s %8s %8s %8s %8s %8s %11s %10s\n", "input", "file MiB", "face", "decode",
+    std::printf("%-12s %9s %5s %8s %8s %8s %8s %8s %8s %11s %10s\n", "input", "file MiB", "face", "oiio", "decode",
                 "convert", "filter", "write", "bake", "peak dec.", "peak bake");
-    for (int width : widths) {
-        const fs::path input = dir / ("latlong_" + std::to_string(width) + ".exr");
-        writeInput(source, width, input);
+    for (std::size_t w = 0; w < inputs.size(); ++w) {
+        const fs::path& input = inputs[w];
+        if (generated) writeInput(source, widths[w], input);
         const double fileMiB = static_cast<double>(fs::file_size(input)) / 1048576.0;
 
+        const double oiioSeconds = plainReadSeconds(input);
         resetPeakMemory();
         auto t0 = Clock::now();
         DecodedImage image = decodeImage(input);
         const double decodeSeconds = secondsSince(t0);
+        const int width = image.width, height = image.height;
         const double decodePeak = peakMemoryMiB();
         std::vector<double> convertSeconds;
         for (int face : faces) {
@@ -189,20 +216,20 @@ int runImportBench(Args args) {
             BakeRequest request;
             request.environment = input;
             request.import.faceSize = faces[i];
-            request.outDir = dir / ("bake_" + std::to_string(width) + "_" + std::to_string(faces[i]));
+            request.outDir = dir / ("bake_" + std::to_string(w) + "_" + std::to_string(faces[i]));
             resetPeakMemory();
             t0 = Clock::now();
             const BakeSummary summary = bake(request);
             const double bakeSeconds = secondsSince(t0);
             const double bakePeak = peakMemoryMiB();
-            std::printf("%-12s %9.1f %5d %8.2f %8.2f %8.2f %8.2f %8.2f %11.0f %10.0f\n",
-                        (std::to_string(width) + "x" + std::to_string(width / 2)).c_str(), fileMiB, faces[i],
-                        decodeSeconds, convertSeconds[i], summary.buildSeconds, summary.writeSeconds,
+            std::printf("%-12s %9.1f %5d %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %11.0f %10.0f\n",
+                        (std::to_string(width) + "x" + std::to_string(height)).c_str(), fileMiB, faces[i],
+                        oiioSeconds, decodeSeconds, convertSeconds[i], summary.buildSeconds, summary.writeSeconds,
                         bakeSeconds, decodePeak, bakePeak);
             std::fflush(stdout);
             fs::remove_all(request.outDir);
         }
-        if (!keep) fs::remove(input);
+        if (!keep && generated) fs::remove(input);
     }
     if (!keep && madeDir) fs::remove_all(dir);
     return 0;
