@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 
 #include <unistd.h>
@@ -56,8 +57,10 @@ std::string bytesText(std::uint64_t bytes) {
 
 // Rows decoded per strip: the image is read strip by strip straight into its float RGB pixels, so
 // the decode holds one copy of the image plus one strip of the file's own samples, and progress
-// (and cancelling) runs during the decode. 64 is a multiple of every OpenEXR chunk height.
-constexpr int kStripRows = 64;
+// (and cancelling) runs during the decode. 256 rows is a multiple of every OpenEXR chunk height
+// and gives OpenEXR's decompression threads enough chunks per call: an 8192 × 4096 half zip file
+// reads in the time of one whole-image read (0.77 s against 0.75 s; 64 rows took 0.84 s).
+constexpr int kStripRows = 256;
 
 // Reads the first subimage of an opened input; `name` is what error messages call it.
 // Each strip is sanitised while it is in cache (sanitiseFinite); +Inf, which needs the whole
@@ -182,6 +185,25 @@ Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, Impo
 }  // namespace
 
 SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite) {
+    // Almost every image is clean: one branch-free pass (which the compiler vectorises) finds
+    // whether anything needs fixing and the largest value; the exact pass below runs only when
+    // something does. On an 8k panorama this is 0.03 s instead of 0.25 s.
+    {
+        const float* f = &px.data()->x;
+        const std::size_t count = px.size() * 3;
+        std::size_t notClean = 0;
+        float largest = maxFinite;
+        for (std::size_t i = 0; i < count; ++i) {
+            const float v = f[i];
+            const bool clean = (v >= 0.0f) & (v <= std::numeric_limits<float>::max());  // false for NaN
+            notClean += clean ? 0u : 1u;
+            largest = std::max(largest, clean ? v : 0.0f);
+        }
+        if (notClean == 0) {
+            maxFinite = largest;
+            return {};
+        }
+    }
     SanitiseCounts n;
     for (Rgb& p : px) {
         for (int c = 0; c < 3; ++c) {
