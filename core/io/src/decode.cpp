@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -53,6 +55,57 @@ std::string bytesText(std::uint64_t bytes) {
     else if (bytes >= (std::uint64_t{1} << 30)) s << static_cast<double>(bytes) / 1073741824.0 << " GiB";
     else s << static_cast<double>(bytes) / 1048576.0 << " MiB";
     return s.str();
+}
+
+// OpenEXR 3.1 allocates each header attribute at the size the header declares before reading
+// it, so a 1 kB file whose attribute claims 2 GB costs 13 s and 1.8 GB before it is refused
+// (found by the environment fuzzer, tests/fuzz/regressions). Every attribute's declared size is
+// checked against the bytes the file has before OpenImageIO opens it. `read(pos, n, out)` reads
+// n bytes at pos and says whether it could; `size` is the file's size. Not an EXR: nothing to do.
+void checkExrHeader(const std::function<bool(std::uint64_t, std::size_t, unsigned char*)>& read,
+                    std::uint64_t size, const fs::path& name) {
+    unsigned char head[8];
+    if (size < 8 || !read(0, 8, head) || head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01)
+        return;
+    const bool multipart = (head[5] & 0x10) != 0;  // version field bit 12
+    std::uint64_t at = 8;
+    // A NUL-terminated string of at most 255 bytes at `at`; "" when the first byte is NUL.
+    auto string = [&](const char* what) {
+        std::string out;
+        unsigned char c = 0;
+        while (true) {
+            if (at >= size || !read(at, 1, &c))
+                throw EnvError(name, std::string("OpenEXR header ends inside an attribute ") + what +
+                                         " (truncated or corrupt file)");
+            ++at;
+            if (c == 0) return out;
+            if (out.size() == 255)
+                throw EnvError(name, std::string("OpenEXR header has an attribute ") + what +
+                                         " longer than 255 bytes (corrupt file)");
+            out.push_back(static_cast<char>(c));
+        }
+    };
+    while (true) {
+        std::string attribute = string("name");
+        if (attribute.empty()) return;  // the end of the header (of the list of headers: multi-part)
+        while (!attribute.empty()) {
+            const std::string type = string("type");
+            unsigned char b[4];
+            if (at + 4 > size || !read(at, 4, b))
+                throw EnvError(name, "OpenEXR header ends inside attribute '" + attribute + "' (truncated file)");
+            at += 4;
+            const std::int64_t declared = static_cast<std::int32_t>(
+                static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+                static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
+            if (declared < 0 || static_cast<std::uint64_t>(declared) > size - at)
+                throw EnvError(name, "OpenEXR header attribute '" + attribute + "' (" + type + ") claims " +
+                                         std::to_string(declared) + " bytes, but the file has " +
+                                         std::to_string(size - at) + " after it (corrupt file)");
+            at += static_cast<std::uint64_t>(declared);
+            attribute = string("name");
+        }
+        if (!multipart) return;
+    }
 }
 
 // Rows decoded per strip: the image is read strip by strip straight into its float RGB pixels, so
@@ -256,12 +309,28 @@ Image readImageFile(const fs::path& file, ImportReport& report, const Progress& 
     const auto bytes = fs::file_size(file, ec);
     if (ec) throw EnvError(file, "cannot read the file: " + ec.message());
     if (bytes == 0) throw EnvError(file, "file is empty (0 bytes)");
+    {
+        std::ifstream in(file, std::ios::binary);
+        checkExrHeader(
+            [&](std::uint64_t pos, std::size_t n, unsigned char* out) {
+                in.seekg(static_cast<std::streamoff>(pos));
+                return static_cast<bool>(in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n)));
+            },
+            bytes, file);
+    }
     return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report, progress, p0, p1);
 }
 
 Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report,
                       const Progress& progress, float p0, float p1) {
     if (bytes.empty()) throw EnvError(name, "file is empty (0 bytes)");
+    checkExrHeader(
+        [&](std::uint64_t pos, std::size_t n, unsigned char* out) {
+            if (pos + n > bytes.size()) return false;
+            std::copy_n(bytes.begin() + static_cast<std::ptrdiff_t>(pos), n, out);
+            return true;
+        },
+        bytes.size(), name);
     OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
     // With a configuration, OpenImageIO 2.4 takes the proxy from it, not from the argument.
     OIIO::ImageSpec config = readConfig();

@@ -163,3 +163,30 @@ TEST(DecodeProgress, ReportsAfterEveryStripAndCancelsMidDecode) {
                  Cancelled);
     EXPECT_EQ(calls, 4) << "the decode stops at the first report that says so, not at the end";
 }
+
+TEST(DecodeLimits, ExrAttributeClaimingMoreThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+    TempDir dir;
+    // A valid small EXR, then one more header attribute whose size claims 1.8 GB: OpenEXR 3.1 would
+    // allocate that before finding the file too short (13 s and 1.8 GB, found by the fuzzer).
+    writeExr(dir / "ok.exr", 4, 2, 3, OIIO::TypeDesc::HALF);
+    std::ifstream in(dir / "ok.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 8u);
+    const std::string attribute = std::string("comments") + '\0' + "string" + '\0' + std::string("\x00\x00\x00\x6c", 4);
+    bytes.insert(8, attribute);  // first in the header
+    const fs::path file = dir / "bomb.exr";
+    std::ofstream(file, std::ios::binary) << bytes;
+    try {
+        decodeImage(file);
+        FAIL() << "the attribute was read";
+    } catch (const EnvError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("'comments' (string) claims 1811939328 bytes"), std::string::npos) << what;
+    }
+    // The same bytes from memory (the embedded and fuzzed path).
+    const std::vector<unsigned char> memory(bytes.begin(), bytes.end());
+    EXPECT_THROW(loadEnvironmentFromMemory(memory, "bomb.exr"), EnvError);
+    // And the untouched file still decodes: the check reads a real header through.
+    EXPECT_EQ(decodeImage(dir / "ok.exr").width, 4);
+}

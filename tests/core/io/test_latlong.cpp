@@ -484,8 +484,10 @@ TEST(LatLongConversion, ResultDoesNotDependOnTheThreadCount) {
     ASSERT_EQ(latLongMethod(quarter.w, quarter.h, 256), LatLongMethod::Gather);
     for (const auto& [image, n] : {std::pair{&sunrise, 64}, std::pair{&quarter, 256}}) {
         std::size_t one = 0, many = 0;
-        const CubeMap a = withThreads(1, one, [&] { return latLongToCube(image->view(), n); });
-        const CubeMap b = withThreads(4, many, [&] { return latLongToCube(image->view(), n); });
+        // Copies, not the bindings themselves: clang before 16 cannot capture structured bindings.
+        const auto convert = [img = image, size = n] { return latLongToCube(img->view(), size); };
+        const CubeMap a = withThreads(1, one, convert);
+        const CubeMap b = withThreads(4, many, convert);
         EXPECT_EQ(one, 1u);
         EXPECT_GT(many, 1u) << "the multi-threaded run used one thread";
         EXPECT_TRUE(bitwiseEqual(a, b)) << "N " << n << ": " << one << " thread(s) against " << many;
