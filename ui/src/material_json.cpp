@@ -5,6 +5,7 @@
 #include <glm/vector_relational.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace mipgloss::ui {
 
@@ -124,7 +125,14 @@ glm::vec3 JsonReader::vec3(const QJsonObject& o, const char* key, const std::str
     if (!v.isArray() || v.toArray().size() != 3) fail("\"" + name + "\" must be an array of three numbers");
     const QJsonArray a = v.toArray();
     glm::vec3 out;
-    for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(finite(a.at(i), name + "[" + std::to_string(i) + "]"));
+    for (int i = 0; i < 3; ++i) {
+        const std::string item = name + "[" + std::to_string(i) + "]";
+        const double d = finite(a.at(i), item);
+        // Held as float: a larger number would become infinite and could not be saved again.
+        if (std::abs(d) > static_cast<double>(std::numeric_limits<float>::max()))
+            fail("\"" + item + "\" is " + std::to_string(d) + ", beyond single precision");
+        out[i] = static_cast<float>(d);
+    }
     return out;
 }
 

@@ -215,7 +215,8 @@ std::string manifestJson(const BakeSummary& summary, Builder builder, const std:
     else
         o << "  \"irradiance\": null,\n";
     o << "  \"sanitized\": {\"nan\": " << summary.report.nanCount << ", \"inf\": " << summary.report.infCount
-      << ", \"negative\": " << summary.report.negativeCount << "}\n";
+      << ", \"negative\": " << summary.report.negativeCount
+      << ", \"huge\": " << summary.report.hugeCount << "}\n";
     o << "}\n";
     return o.str();
 }

@@ -202,6 +202,7 @@ Image readOpened(OIIO::ImageInput& in, const fs::path& name, SanitiseCounts& cou
         counts.nan += strip.nan;
         counts.inf += strip.inf;
         counts.negative += strip.negative;
+        counts.huge += strip.huge;
         reportProgress(progress, "import", p0 + (p1 - p0) * static_cast<float>(y1) / static_cast<float>(spec.height));
     }
     if (counts.inf > 0) replaceInfinities(img.px, maxFinite);
@@ -248,7 +249,7 @@ SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite) {
         float largest = maxFinite;
         for (std::size_t i = 0; i < count; ++i) {
             const float v = f[i];
-            const bool clean = (v >= 0.0f) & (v <= std::numeric_limits<float>::max());  // false for NaN
+            const bool clean = (v >= 0.0f) & (v <= kMaxRadiance);  // false for NaN
             notClean += clean ? 0u : 1u;
             largest = std::max(largest, clean ? v : 0.0f);
         }
@@ -269,6 +270,10 @@ SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite) {
                 ++n.negative;
             } else if (std::isinf(v)) {
                 ++n.inf;
+            } else if (v > kMaxRadiance) {
+                v = kMaxRadiance;
+                ++n.huge;
+                maxFinite = kMaxRadiance;
             } else {
                 maxFinite = std::max(maxFinite, v);
             }
@@ -291,14 +296,16 @@ SanitiseCounts sanitise(std::span<Rgb> px) {
 }
 
 void addCounts(ImportReport& report, const fs::path& file, const SanitiseCounts& n) {
-    if (n.nan + n.inf + n.negative == 0) return;
+    if (n.nan + n.inf + n.negative + n.huge == 0) return;
     report.nanCount += n.nan;
     report.infCount += n.inf;
     report.negativeCount += n.negative;
+    report.hugeCount += n.huge;
     std::ostringstream msg;
     msg << file.string() << ": replaced " << n.nan << " NaN value(s) by 0, " << n.inf
         << " infinite value(s) by the largest finite value and " << n.negative
         << " negative value(s) by 0";
+    if (n.huge > 0) msg << "; lowered " << n.huge << " value(s) above " << kMaxRadiance << " to it";
     report.warnings.push_back(msg.str());
 }
 

@@ -23,11 +23,12 @@ namespace mipgloss::io_detail {
 using Image = DecodedImage;
 
 struct SanitiseCounts {
-    std::size_t nan = 0, inf = 0, negative = 0;
+    std::size_t nan = 0, inf = 0, negative = 0, huge = 0;
 };
 
 // The one sanitising rule for every pixel mipgloss reads (images, face files, cube EXR files):
-// NaN -> 0, negative (including -Inf) -> 0, +Inf -> the largest finite value among `px`.
+// NaN -> 0, negative (including -Inf) -> 0, finite values above kMaxRadiance -> kMaxRadiance,
+// +Inf -> the largest value left among `px`.
 SanitiseCounts sanitise(std::span<Rgb> px);
 
 // The rule in two steps, for data that arrives in pieces: sanitiseFinite fixes NaN and negatives,

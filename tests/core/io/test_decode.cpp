@@ -190,3 +190,29 @@ TEST(DecodeLimits, ExrAttributeClaimingMoreThanTheFileIsRefusedBeforeOpenExrAllo
     // And the untouched file still decodes: the check reads a real header through.
     EXPECT_EQ(decodeImage(dir / "ok.exr").width, 4);
 }
+
+TEST(DecodeStrips, ValuesNearFloatMaxAreLoweredSoAveragesStayFinite) {
+    TempDir dir;
+    // Finite values near 3.4e38 (a fuzzed float TIFF had them): any average over them overflowed.
+    const int w = 16, h = 8;
+    std::vector<float> px(static_cast<std::size_t>(w * h * 3), 3.0e38f);
+    px[0] = 2.0f;
+    px[1] = std::numeric_limits<float>::infinity();
+    auto out = OIIO::ImageOutput::create((dir / "huge.exr").string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open((dir / "huge.exr").string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+    ASSERT_TRUE(out->close());
+    ImportReport report;
+    const DecodedImage img = decodeImage(dir / "huge.exr", &report);
+    EXPECT_EQ(img.at(0, 0).x, 2.0f);
+    EXPECT_EQ(img.at(0, 0).y, kMaxRadiance) << "+Inf takes the largest value left, the ceiling";
+    EXPECT_EQ(img.at(5, 5).z, kMaxRadiance);
+    EXPECT_EQ(report.hugeCount, static_cast<std::size_t>(w * h * 3 - 2));
+    EXPECT_EQ(report.infCount, 1u);
+    const ImportedEnvironment env = loadEnvironment(dir / "huge.exr");
+    for (Face f : kAllFaces)
+        for (int y = 0; y < env.cube.size(); ++y)
+            for (int x = 0; x < env.cube.size(); ++x)
+                for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(env.cube.at(f, x, y)[c]));
+}

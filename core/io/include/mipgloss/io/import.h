@@ -9,8 +9,8 @@
 // The first three channels are read; one channel (grey, grey + alpha) is replicated to RGB; alpha
 // is ignored (read unassociated, so colour is never multiplied by it).
 //
-// Sanitising: NaN -> 0, negative (including -Inf) -> 0, +Inf -> the largest finite value of that
-// image. Every replaced value is counted in the report, with one warning per file naming it. The
+// Sanitising: NaN -> 0, negative (including -Inf) -> 0, a finite value above kMaxRadiance (1e20)
+// -> kMaxRadiance, +Inf -> the largest value left in that image. Every replaced value is counted in the report, with one warning per file naming it. The
 // same rule applies to every file mipgloss reads pixels from, the cube EXR file included.
 #pragma once
 
@@ -73,6 +73,12 @@ enum class Handedness { Right, Left };
 const char* handednessName(Handedness h);  // "right", "left"
 bool parseHandedness(const std::string& text, Handedness& out);
 
+// The largest radiance a pixel keeps. No measured radiance comes near it (HDRIs store up to about
+// 1e6, a sun in absolute units 1e9), and sums of a billion such values stay finite in single
+// precision; a float near its own maximum (3.4e38) made every average over it infinite (found by
+// the environment fuzzer: tests/fuzz/regressions/environment_import).
+inline constexpr float kMaxRadiance = 1e20f;
+
 struct ImportOptions {
     EnvLayout layout = EnvLayout::Auto;
     Handedness handedness = Handedness::Right;
@@ -85,6 +91,7 @@ struct ImportReport {
     EnvLayout layout = EnvLayout::Auto;
     std::vector<std::filesystem::path> files;  // the files actually read
     std::size_t nanCount = 0, infCount = 0, negativeCount = 0;  // replaced, per file summed
+    std::size_t hugeCount = 0;  // finite values above kMaxRadiance, lowered to it
     std::vector<std::string> warnings;                          // each names its file
 };
 
