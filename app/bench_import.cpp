@@ -40,8 +40,8 @@ bench import: for each width W, makes a W x W/2 lat-long input from the environm
     filter    the chain's build (bake's build stage, default builder)
     write     bake's parallel write of every level
     bake      the whole `mipgloss bake --size N` run (decode + convert + filter + write), wall time
-  and the peak resident memory of the decode alone and of the whole bake (VmHWM, reset before
-  each by /proc/self/clear_refs).
+  and what the decode alone and the whole bake added to the resident memory at their peak (VmHWM,
+  reset before each through /proc/self/clear_refs, over the resident size then).
   --env FILE    the lat-long environment the inputs are resampled from (default: the embedded
                 default environment)
   --widths LIST input widths, each even and >= 64 (default 2048,8192,16384)
@@ -81,13 +81,19 @@ void resetPeakMemory() {
     std::ofstream("/proc/self/clear_refs") << "5";
 }
 
-double peakMemoryMiB() {
+// A field of /proc/self/status in MiB (VmHWM: the high-water mark; VmRSS: resident now).
+double statusMiB(const char* field) {
     std::ifstream status("/proc/self/status");
     std::string line;
+    const std::string key = std::string(field) + ":";
     while (std::getline(status, line))
-        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+        if (line.rfind(key, 0) == 0) return std::stod(line.substr(key.size())) / 1024.0;  // kB
     return 0.0;
 }
+
+// What a stage added at its peak: the high-water mark over the resident size when it was reset.
+// (The process already holds what earlier stages left in the allocator, which is not the stage's.)
+double peakMemoryMiB(double residentAtReset) { return statusMiB("VmHWM") - residentAtReset; }
 
 // The source read bilinearly at (u, v) in [0, 1]², wrapping in u, clamped in v.
 Rgb bilinear(const DecodedImage& img, double u, double v) {
@@ -189,9 +195,10 @@ int runImportBench(Args args) {
         for (int width : widths) inputs.push_back(dir / ("latlong_" + std::to_string(width) + ".exr"));
     }
     const bool generated = source.width > 0;  // the user's own --input files are never removed
-    std::printf("# seconds per stage; peak = resident high-water mark in MiB (decode alone, whole bake)\n");
+    std::printf("# seconds per stage; +MiB = what the decode alone and the whole bake added to the resident\n"
+                "# memory at their peak (VmHWM over VmRSS when reset)\n");
     std::printf("%-12s %9s %5s %8s %8s %8s %8s %8s %8s %11s %10s\n", "input", "file MiB", "face", "oiio", "decode",
-                "convert", "filter", "write", "bake", "peak dec.", "peak bake");
+                "convert", "filter", "write", "bake", "dec. +MiB", "bake +MiB");
     for (std::size_t w = 0; w < inputs.size(); ++w) {
         const fs::path& input = inputs[w];
         if (generated) writeInput(source, widths[w], input);
@@ -199,11 +206,12 @@ int runImportBench(Args args) {
 
         const double oiioSeconds = plainReadSeconds(input);
         resetPeakMemory();
+        const double decodeBase = statusMiB("VmRSS");
         auto t0 = Clock::now();
         DecodedImage image = decodeImage(input);
         const double decodeSeconds = secondsSince(t0);
         const int width = image.width, height = image.height;
-        const double decodePeak = peakMemoryMiB();
+        const double decodePeak = peakMemoryMiB(decodeBase);
         std::vector<double> convertSeconds;
         for (int face : faces) {
             t0 = Clock::now();
@@ -218,10 +226,11 @@ int runImportBench(Args args) {
             request.import.faceSize = faces[i];
             request.outDir = dir / ("bake_" + std::to_string(w) + "_" + std::to_string(faces[i]));
             resetPeakMemory();
+            const double bakeBase = statusMiB("VmRSS");
             t0 = Clock::now();
             const BakeSummary summary = bake(request);
             const double bakeSeconds = secondsSince(t0);
-            const double bakePeak = peakMemoryMiB();
+            const double bakePeak = peakMemoryMiB(bakeBase);
             std::printf("%-12s %9.1f %5d %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %11.0f %10.0f\n",
                         (std::to_string(width) + "x" + std::to_string(height)).c_str(), fileMiB, faces[i],
                         oiioSeconds, decodeSeconds, convertSeconds[i], summary.buildSeconds, summary.writeSeconds,
