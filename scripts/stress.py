@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Stress cases of issue 11 (README "Hardening"): each either works or is refused with a message
 naming the file, never an abort. Prints one line per case: outcome, exit status, wall time, peak
-resident memory of the command (the child's ru_maxrss), and the last line it printed.
+resident memory of the command (the child's ru_maxrss), and the last three lines it printed.
 
     scripts/stress.sh [BUILD_DIR]      (runs this under one Xvfb; default build/dev)
 
@@ -46,7 +46,7 @@ def run_case(name, args, must_name=None):
     res = subprocess.run([sys.executable, "-c", wrapper, str(TIMEOUT)] + args, capture_output=True, text=True)
     rc, wall, peak, out = eval(res.stdout.strip().splitlines()[-1])
     lines = [l for l in out.splitlines() if l.strip() and "XDG_RUNTIME_DIR" not in l]
-    last = lines[-1] if lines else ""
+    last = " | ".join(l.strip() for l in lines[-3:])
     if rc == "hang":
         outcome = "HANG"
     elif isinstance(rc, int) and rc < 0:
@@ -57,7 +57,7 @@ def run_case(name, args, must_name=None):
         outcome = "NAMELESS"
     else:
         outcome = "refused"
-    print(f"{outcome:8} {name:44} exit {rc!s:5} {wall:7.1f} s {peak:8.0f} MiB  {last[:150]}")
+    print(f"{outcome:8} {name:44} exit {rc!s:5} {wall:7.1f} s {peak:8.0f} MiB  {last[:400]}")
     sys.stdout.flush()
     return outcome in ("works", "refused")
 
