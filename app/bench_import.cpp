@@ -2,6 +2,7 @@
 // (decode, lat-long -> cube conversion, filter, write), for lat-long inputs of several widths and
 // cubes of several face sizes. Timings are printed, never asserted.
 #include "bench_import.h"
+#include "process_memory.h"
 
 #include "mipgloss/ibl/parallel.h"
 #include "mipgloss/io/bake.h"
@@ -81,19 +82,9 @@ void resetPeakMemory() {
     std::ofstream("/proc/self/clear_refs") << "5";
 }
 
-// A field of /proc/self/status in MiB (VmHWM: the high-water mark; VmRSS: resident now).
-double statusMiB(const char* field) {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    const std::string key = std::string(field) + ":";
-    while (std::getline(status, line))
-        if (line.rfind(key, 0) == 0) return std::stod(line.substr(key.size())) / 1024.0;  // kB
-    return 0.0;
-}
-
 // What a stage added at its peak: the high-water mark over the resident size when it was reset.
 // (The process already holds what earlier stages left in the allocator, which is not the stage's.)
-double peakMemoryMiB(double residentAtReset) { return statusMiB("VmHWM") - residentAtReset; }
+double peakMemoryMiB(double residentAtReset) { return processStatusMiB("VmHWM") - residentAtReset; }
 
 // The source read bilinearly at (u, v) in [0, 1]², wrapping in u, clamped in v.
 Rgb bilinear(const DecodedImage& img, double u, double v) {
@@ -206,7 +197,7 @@ int runImportBench(Args args) {
 
         const double oiioSeconds = plainReadSeconds(input);
         resetPeakMemory();
-        const double decodeBase = statusMiB("VmRSS");
+        const double decodeBase = processStatusMiB("VmRSS");
         auto t0 = Clock::now();
         DecodedImage image = decodeImage(input);
         const double decodeSeconds = secondsSince(t0);
@@ -226,7 +217,7 @@ int runImportBench(Args args) {
             request.import.faceSize = faces[i];
             request.outDir = dir / ("bake_" + std::to_string(w) + "_" + std::to_string(faces[i]));
             resetPeakMemory();
-            const double bakeBase = statusMiB("VmRSS");
+            const double bakeBase = processStatusMiB("VmRSS");
             t0 = Clock::now();
             const BakeSummary summary = bake(request);
             const double bakeSeconds = secondsSince(t0);

@@ -10,6 +10,8 @@
 //   mipgloss-gui --screenshot FILE          saves the first complete frame to FILE, then exits
 //
 // Exit status: 0 done, 1 bad arguments, 2 no usable OpenGL, 3 timed out, 4 screenshot not written.
+#include "process_memory.h"
+
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/gl_format.h"
@@ -115,15 +117,6 @@ bool asksForHelpOrVersion(int argc, char** argv) {
     return false;
 }
 
-// The process's resident high-water mark (Linux VmHWM), for --time-to-first-frame; 0 elsewhere.
-double peakMemoryMiB() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
-    return 0.0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -198,7 +191,7 @@ int main(int argc, char** argv) {
         if (timing) {
             std::printf("first frame: %.0f ms (imported cube); complete frame: %.0f ms (environment "
                         "ready at %.0f ms); peak memory %.0f MiB\n",
-                        firstFrameMs, sinceStartMs(), environmentReadyMs, peakMemoryMiB());
+                        firstFrameMs, sinceStartMs(), environmentReadyMs, mipgloss::app::processStatusMiB("VmHWM"));
             std::fflush(stdout);
         }
         // Outside paintGL: grabbing renders the widget again.
