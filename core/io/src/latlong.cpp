@@ -305,56 +305,88 @@ void forBandsInTwoPhases(int height, int rowsPerBand, const std::function<void(i
 //     and t = ½(1 + v_y·cot θ/(axis·ĥ));
 //   - on ±Y, s = ½(1 + |tan θ|·(u·ĥ)) and t = ½(1 + |tan θ|·(v·ĥ)).
 // The face is directionToFace's: the same products sin θ·|cos φ|, sin θ·|sin φ| and |cos θ| are
-// compared, ties to x, then y.
+// compared, ties to x, then y. The columns are stored as parallel arrays and a whole stratum row
+// is looked up in one branch-free loop (texelsOfRow), which the compiler vectorises: both faces'
+// indices are computed and one is selected, so the per-stratum cost is a few vector operations
+// instead of a branchy call (the 8k → 512² scatter: 4 strata per pixel, 134 M lookups).
 struct StrataColumns {
-    struct Column {
-        Source::Column c;
-        int pixel;          // the image column the stratum lies in
-        float cosPhi, sinPhi;
-        float major;        // |cos φ| or |sin φ|: sin θ times it is the side face's |ma|
-        bool sideIsX;       // x wins ties with y; y wins them with z
-        int side;           // texel index of the side face's column: (face·n)·n + x
-        float sideT;        // v_y/(axis·ĥ) on the side face
-        float polarS[2], polarT[2];  // u·ĥ and v·ĥ on +Y and −Y
-    };
-    std::vector<Column> cols;
+    std::vector<Source::Column> taps;  // bilinear taps of the stratum's centre
+    std::vector<int> pixel;            // the image column the stratum lies in
+    std::vector<float> major;          // |cos φ| or |sin φ|: sin θ times it is the side face's |ma|
+    std::vector<float> polarTies;      // 1 where x wins ties with y (the polar test is >), else 0 (≥)
+    std::vector<int> side;             // texel index of the side face's column: (face·n)·n + x
+    std::vector<float> sideT;          // v_y/(axis·ĥ) on the side face
+    std::array<std::vector<float>, 2> polarS, polarT;  // u·ĥ and v·ĥ on +Y and −Y
 
-    StrataColumns(const Source& src, int ku, int n) : cols(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(ku)) {
+    StrataColumns(const Source& src, int ku, int n) {
         const int nu = src.width * ku;
+        const std::size_t size = static_cast<std::size_t>(nu);
+        taps.resize(size);
+        pixel.resize(size);
+        major.resize(size);
+        polarTies.resize(size);
+        side.resize(size);
+        sideT.resize(size);
+        for (int k = 0; k < 2; ++k) {
+            polarS[static_cast<std::size_t>(k)].resize(size);
+            polarT[static_cast<std::size_t>(k)].resize(size);
+        }
         for (int a = 0; a < nu; ++a) {
+            const std::size_t i = static_cast<std::size_t>(a);
             const double u = (a + 0.5) / nu, phi = 2.0 * kPi * (u - 0.5);
-            Column& c = cols[static_cast<std::size_t>(a)];
-            c.c = src.column(u);
-            c.pixel = a / ku;
-            c.cosPhi = static_cast<float>(std::cos(phi));
-            c.sinPhi = static_cast<float>(std::sin(phi));
-            c.sideIsX = std::fabs(c.cosPhi) >= std::fabs(c.sinPhi);
-            c.major = c.sideIsX ? std::fabs(c.cosPhi) : std::fabs(c.sinPhi);
-            const Face side = c.sideIsX ? (c.cosPhi >= 0.0f ? Face::PX : Face::NX) : (c.sinPhi >= 0.0f ? Face::PZ : Face::NZ);
-            const glm::dvec3 h(c.cosPhi, 0.0, c.sinPhi);
-            const FaceFrame& fr = faceFrame(side);
+            taps[i] = src.column(u);
+            pixel[i] = a / ku;
+            const float cosPhi = static_cast<float>(std::cos(phi)), sinPhi = static_cast<float>(std::sin(phi));
+            const bool sideIsX = std::fabs(cosPhi) >= std::fabs(sinPhi);  // x wins ties with z
+            major[i] = sideIsX ? std::fabs(cosPhi) : std::fabs(sinPhi);
+            polarTies[i] = sideIsX ? 1.0f : 0.0f;  // x wins ties with y; y wins them with z
+            const Face f = sideIsX ? (cosPhi >= 0.0f ? Face::PX : Face::NX) : (sinPhi >= 0.0f ? Face::PZ : Face::NZ);
+            const glm::dvec3 h(cosPhi, 0.0, sinPhi);
+            const FaceFrame& fr = faceFrame(f);
             const double across = glm::dot(glm::dvec3(fr.axis), h);
             const double s = 0.5 * (1.0 + glm::dot(glm::dvec3(fr.u), h) / across);
-            c.side = (static_cast<int>(side) * n) * n + std::clamp(static_cast<int>(s * n), 0, n - 1);
-            c.sideT = static_cast<float>(fr.v.y / across);
+            side[i] = (static_cast<int>(f) * n) * n + std::clamp(static_cast<int>(s * n), 0, n - 1);
+            sideT[i] = static_cast<float>(fr.v.y / across);
             for (int k = 0; k < 2; ++k) {
                 const FaceFrame& p = faceFrame(k == 0 ? Face::PY : Face::NY);
-                c.polarS[k] = static_cast<float>(glm::dot(glm::dvec3(p.u), h));
-                c.polarT[k] = static_cast<float>(glm::dot(glm::dvec3(p.v), h));
+                polarS[static_cast<std::size_t>(k)][i] = static_cast<float>(glm::dot(glm::dvec3(p.u), h));
+                polarT[static_cast<std::size_t>(k)][i] = static_cast<float>(glm::dot(glm::dvec3(p.v), h));
             }
         }
     }
 
-    // Index (face·n + y)·n + x of the texel holding the stratum in row (sin θ, cos θ) and column c.
-    static int texel(const Column& c, float sn, float ct, float cot, float tanAbs, int n) {
-        const float side = sn * c.major, polar = std::fabs(ct);
-        auto index = [n](float q) { return std::clamp(static_cast<int>(q * static_cast<float>(n)), 0, n - 1); };
-        if (c.sideIsX ? polar > side : polar >= side) {
-            const int k = ct > 0.0f ? 0 : 1;
-            const int x = index(0.5f * (1.0f + tanAbs * c.polarS[k])), y = index(0.5f * (1.0f + tanAbs * c.polarT[k]));
-            return ((2 + k) * n + y) * n + x;  // faces 2 and 3 are +Y and −Y
+    std::size_t size() const { return taps.size(); }
+
+    // Index (face·n + y)·n + x of the texel holding each stratum of the row (sin θ, cos θ), into
+    // `out` (size() entries). A texel index q·n is clamped to [0, n − 1] in float before it is
+    // truncated, which is floor for q·n ≥ 0, as clamp(int(q·n)) was. |tan θ| is only used where
+    // the pole's face wins (|cos θ| ≥ sin θ·|ma| ≥ sin θ/√2, so |tan θ| ≤ √2) and cot θ only where
+    // a side face wins (|cot θ| < 1): both are capped at 2, which keeps the unused lane finite.
+    void texelsOfRow(float sn, float ct, int n, int* out) const {
+        const float polar = std::fabs(ct);
+        const float cot = std::clamp(ct / sn, -2.0f, 2.0f), tanAbs = std::min(sn / polar, 2.0f);
+        const std::size_t k = ct > 0.0f ? 0 : 1;
+        const int polarBase = (2 + static_cast<int>(k)) * n * n;  // faces 2 and 3 are +Y and −Y
+        const float m = static_cast<float>(n), top = static_cast<float>(n - 1);
+        const float* ps = polarS[k].data();
+        const float* pt = polarT[k].data();
+        const float* mj = major.data();
+        const float* ties = polarTies.data();
+        const float* st = sideT.data();
+        const int* sd = side.data();
+        const std::size_t count = size();
+#pragma omp simd
+        for (std::size_t a = 0; a < count; ++a) {
+            const float sideMa = sn * mj[a];
+            // polar > sideMa where x wins ties, polar ≥ sideMa elsewhere (bitwise: no branch).
+            const bool polarWins = (polar > sideMa) | ((ties[a] == 0.0f) & (polar == sideMa));
+            const float px = std::min(std::max(0.5f * (1.0f + tanAbs * ps[a]) * m, 0.0f), top);
+            const float py = std::min(std::max(0.5f * (1.0f + tanAbs * pt[a]) * m, 0.0f), top);
+            const float sy = std::min(std::max(0.5f * (1.0f + st[a] * cot) * m, 0.0f), top);
+            const int polarIndex = polarBase + static_cast<int>(py) * n + static_cast<int>(px);
+            const int sideIndex = sd[a] + static_cast<int>(sy) * n;
+            out[a] = polarWins ? polarIndex : sideIndex;
         }
-        return c.side + index(0.5f * (1.0f + c.sideT * cot)) * n;
     }
 };
 
@@ -371,11 +403,13 @@ void scatter(const Source& src, const Strata& st, CubeMap& cube, const ProgressS
 
     forBandsInTwoPhases(src.height, bandRows(src.height, n), [&](int j0, int j1) {
         std::vector<Rgb> line(oneStratumPerPixel ? 0 : static_cast<std::size_t>(src.width));
+        std::vector<int> texels(columns.size());
+        const Source::Column* taps = columns.taps.data();
         for (int b = j0 * st.kv; b < j1 * st.kv; ++b) {
             const double v = (b + 0.5) / nv;
             const float ct = static_cast<float>(std::cos(kPi * v)), sn = static_cast<float>(std::sin(kPi * v));
-            const float cot = ct / sn, tanAbs = sn / std::fabs(ct);
             const double w = std::cos(kPi * b / nv) - std::cos(kPi * (b + 1) / nv);  // per unit Δφ
+            columns.texelsOfRow(sn, ct, n, texels.data());
             // The row interpolated to this stratum row's θ once, then read across.
             const Rgb* pixels = src.row(b + 1);
             if (!oneStratumPerPixel) {
@@ -386,27 +420,27 @@ void scatter(const Source& src, const Strata& st, CubeMap& cube, const ProgressS
                     line[static_cast<std::size_t>(i)] = src.tap(r0, i) * (1.0f - r.fy) + src.tap(r1, i) * r.fy;
             }
             // Neighbouring strata mostly share a texel: sum runs before touching the cube.
-            int run = -1, runCount = 0;
-            Rgb runSum(0.0f);
-            auto flush = [&] {
-                if (runCount == 0) return;
+            auto flush = [&](int run, const Rgb& runSum, int runCount) {
                 texelAt(run) += Rgb(w * glm::dvec3(runSum));
                 weight[static_cast<std::size_t>(run)] += static_cast<float>(w * runCount);
             };
-            for (const StrataColumns::Column& c : columns.cols) {
-                const int t = StrataColumns::texel(c, sn, ct, cot, tanAbs, n);
-                if (t != run) {
-                    flush();
-                    run = t;
+            auto value = [&](std::size_t a) {
+                if (oneStratumPerPixel) return src.tap(pixels, columns.pixel[a]);
+                const Source::Column& c = taps[a];
+                return line[static_cast<std::size_t>(c.i0)] * (1.0f - c.fx) + line[static_cast<std::size_t>(c.i1)] * c.fx;
+            };
+            const std::size_t count = columns.size();
+            std::size_t start = 0;
+            Rgb runSum = value(0);
+            for (std::size_t a = 1; a < count; ++a) {
+                if (texels[a] != texels[start]) {
+                    flush(texels[start], runSum, static_cast<int>(a - start));
+                    start = a;
                     runSum = Rgb(0.0f);
-                    runCount = 0;
                 }
-                runSum += oneStratumPerPixel ? src.tap(pixels, c.pixel)
-                                             : line[static_cast<std::size_t>(c.c.i0)] * (1.0f - c.c.fx) +
-                                                   line[static_cast<std::size_t>(c.c.i1)] * c.c.fx;
-                ++runCount;
+                runSum += value(a);
             }
-            flush();
+            flush(texels[start], runSum, static_cast<int>(count - start));
         }
     }, progress.sub(0.0, 0.95));
 
