@@ -1,12 +1,16 @@
 #include "decode.h"
 
+#include "latlong.h"
 #include "text.h"
+#include "mipgloss/ibl/parallel.h"
 #include "mipgloss/ibl/colour.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <Imath/half.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -108,102 +112,194 @@ void checkExrHeader(const std::function<bool(std::uint64_t, std::size_t, unsigne
     }
 }
 
-// Rows decoded per strip: the image is read strip by strip straight into its float RGB pixels, so
-// the decode holds one copy of the image plus one strip of the file's own samples, and progress
-// (and cancelling) runs during the decode. 256 rows is a multiple of every OpenEXR chunk height
-// and gives OpenEXR's decompression threads enough chunks per call: an 8192 × 4096 half zip file
-// reads in the time of one whole-image read (0.77 s against 0.75 s; 64 rows took 0.84 s).
-constexpr int kStripRows = 256;
+// Rows decoded per strip: the image is read strip by strip, so the decode holds one copy of the
+// image plus a strip of the file's own samples (or, streamed, only strips), and progress (and
+// cancelling) runs during the decode. 256 rows is a multiple of every OpenEXR chunk height and
+// gives OpenEXR's decompression threads enough chunks per call: an 8192 × 4096 half zip file
+// reads in the time of one whole-image read (0.77 s against 0.75 s; 64 rows took 0.84 s). The
+// lat-long scatter takes images in the same strips (kLatLongStripRows), so that a streamed file
+// and the same image in memory give the same cube.
+constexpr int kStripRows = kLatLongStripRows;
+
+// An opened image read strip by strip: read() takes the file's own samples on the calling thread
+// (OpenImageIO and OpenEXR decompress there), convert() makes them linear float RGB and can run
+// elsewhere. Float files are read straight into the output pixels (a stride of one Rgb), half
+// files as half and widened here (OpenImageIO's own conversion ran on the reading thread), 8-
+// and 16-bit files through the exact sRGB table.
+class StripReader {
+public:
+    StripReader(OIIO::ImageInput& in, const fs::path& name) : in_(in), name_(name), spec_(in.spec()) {
+        if (spec_.width <= 0 || spec_.height <= 0 || spec_.nchannels <= 0)
+            throw EnvError(name, "image has no pixels (" + sizeText(spec_.width, spec_.height) + ")");
+        if (spec_.depth > 1) throw EnvError(name, "volume images are not environments");
+        nc_ = std::min(spec_.nchannels, 3);
+        const std::uint64_t count = static_cast<std::uint64_t>(spec_.width) * static_cast<std::uint64_t>(spec_.height);
+        const std::uint64_t needed = count * sizeof(Rgb);
+        if (needed > decodeBudgetBytes())
+            throw EnvError(name, "is " + sizeText(spec_.width, spec_.height) + " pixels: decoding it needs " +
+                                     bytesText(needed) + ", more than this machine can spare (" +
+                                     bytesText(decodeBudgetBytes()) + ", three quarters of its memory)");
+        const auto base = static_cast<OIIO::TypeDesc::BASETYPE>(spec_.format.basetype);
+        kind_ = base == OIIO::TypeDesc::UINT8    ? Kind::Srgb8
+                : base == OIIO::TypeDesc::UINT16 ? Kind::Srgb16
+                : base == OIIO::TypeDesc::HALF   ? Kind::Half
+                                                 : Kind::Float;
+        otherInteger_ = base == OIIO::TypeDesc::INT8 || base == OIIO::TypeDesc::INT16 ||
+                        base == OIIO::TypeDesc::UINT32 || base == OIIO::TypeDesc::INT32;
+        tiled_ = spec_.tile_width > 0;
+        // Tiled files are read by rows of tiles, scanline files by strips of kStripRows.
+        rowsPerStrip_ = tiled_ ? std::max(1, spec_.tile_height) * std::max(1, kStripRows / std::max(1, spec_.tile_height))
+                               : kStripRows;
+    }
+
+    int width() const { return spec_.width; }
+    int height() const { return spec_.height; }
+    int rowsPerStrip() const { return rowsPerStrip_; }
+
+    // The file's samples of rows [y0, y1): into `raw`, or straight into `out` for float files.
+    void read(int y0, int y1, std::vector<unsigned char>& raw, Rgb* out) {
+        const std::size_t samples = static_cast<std::size_t>(y1 - y0) * static_cast<std::size_t>(spec_.width) *
+                                    static_cast<std::size_t>(nc_);
+        bool ok = false;
+        switch (kind_) {
+        case Kind::Srgb8: raw.resize(samples); ok = rows(y0, y1, OIIO::TypeDesc::UINT8, raw.data(), OIIO::AutoStride); break;
+        case Kind::Srgb16: raw.resize(samples * 2); ok = rows(y0, y1, OIIO::TypeDesc::UINT16, raw.data(), OIIO::AutoStride); break;
+        case Kind::Half: raw.resize(samples * 2); ok = rows(y0, y1, OIIO::TypeDesc::HALF, raw.data(), OIIO::AutoStride); break;
+        case Kind::Float: ok = rows(y0, y1, OIIO::TypeDesc::FLOAT, out, sizeof(Rgb)); break;
+        }
+        if (!ok) {
+            std::string err = in_.geterror();
+            if (err.empty()) err = "unknown error";
+            throw EnvError(name_, "cannot read the pixels (corrupt or truncated file?): " + err);
+        }
+    }
+
+    // Linear float RGB of `pixels` pixels from what read() left (in `raw` or already in `out`).
+    void convert(const std::vector<unsigned char>& raw, std::size_t pixels, Rgb* out) const {
+        const std::size_t nc = static_cast<std::size_t>(nc_);
+        auto each = [&](auto sample) {  // out[i] from the nc samples sample(k), k = i·nc + c
+            parallelFor(0, static_cast<int>((pixels + kChunk - 1) / kChunk), [&](int chunk) {
+                const std::size_t i0 = static_cast<std::size_t>(chunk) * kChunk, i1 = std::min(pixels, i0 + kChunk);
+                for (std::size_t i = i0; i < i1; ++i) {
+                    const std::size_t k = i * nc;
+                    out[i] = nc >= 3 ? Rgb(sample(k), sample(k + 1), sample(k + 2)) : Rgb(sample(k));
+                }
+            });
+        };
+        switch (kind_) {
+        case Kind::Srgb8: {
+            const float* t = srgbTable(8).data();
+            each([&](std::size_t k) { return t[raw[k]]; });
+            break;
+        }
+        case Kind::Srgb16: {
+            const float* t = srgbTable(16).data();
+            const auto* r = reinterpret_cast<const std::uint16_t*>(raw.data());
+            each([&](std::size_t k) { return t[r[k]]; });
+            break;
+        }
+        case Kind::Half: {
+            const auto* r = reinterpret_cast<const Imath::half*>(raw.data());
+            each([&](std::size_t k) { return static_cast<float>(r[k]); });
+            break;
+        }
+        case Kind::Float:
+            // Floats are in place; integers other than 8/16 bits are sRGB in [0, 1]; grey replicated.
+            if (otherInteger_)
+                for (std::size_t i = 0; i < pixels; ++i)
+                    for (int c = 0; c < nc_; ++c)
+                        out[i][c] = static_cast<float>(srgbToLinear(std::clamp(static_cast<double>(out[i][c]), 0.0, 1.0)));
+            if (nc_ < 3)
+                for (std::size_t i = 0; i < pixels; ++i) out[i] = Rgb(out[i].x);
+            break;
+        }
+    }
+
+private:
+    enum class Kind { Srgb8, Srgb16, Half, Float };
+    static constexpr std::size_t kChunk = 16384;
+
+    bool rows(int y0, int y1, OIIO::TypeDesc type, void* data, OIIO::stride_t xstride) {
+        const int yb = spec_.y + y0, ye = spec_.y + y1;
+        return tiled_ ? in_.read_tiles(0, 0, spec_.x, spec_.x + spec_.width, yb, ye, spec_.z, spec_.z + 1, 0, nc_, type, data,
+                                       xstride)
+                      : in_.read_scanlines(0, 0, yb, ye, spec_.z, 0, nc_, type, data, xstride);
+    }
+
+    OIIO::ImageInput& in_;
+    const fs::path& name_;
+    const OIIO::ImageSpec& spec_;
+    int nc_ = 3;
+    Kind kind_ = Kind::Float;
+    bool otherInteger_ = false, tiled_ = false;
+    int rowsPerStrip_ = kStripRows;
+};
+
+void addStripCounts(SanitiseCounts& counts, const SanitiseCounts& strip) {
+    counts.nan += strip.nan;
+    counts.inf += strip.inf;
+    counts.negative += strip.negative;
+    counts.huge += strip.huge;
+}
 
 // Reads the first subimage of an opened input; `name` is what error messages call it.
 // Each strip is sanitised while it is in cache (sanitiseFinite); +Inf, which needs the whole
 // image's largest finite value, is replaced after the last strip, only when there is one.
+// With a consumer (chosen from the size), the image is never whole: each strip goes to it in the
+// background while the next is read (two strips in flight), and +Inf is left for it.
 Image readOpened(OIIO::ImageInput& in, const fs::path& name, SanitiseCounts& counts, const Progress& progress,
-                 float p0, float p1) {
-    const OIIO::ImageSpec& spec = in.spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        throw EnvError(name, "image has no pixels (" + sizeText(spec.width, spec.height) + ")");
-    if (spec.depth > 1) throw EnvError(name, "volume images are not environments");
-    const int nc = std::min(spec.nchannels, 3);
-    const std::uint64_t count = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
-    const std::uint64_t needed = count * sizeof(Rgb);
-    if (needed > decodeBudgetBytes())
-        throw EnvError(name, "is " + sizeText(spec.width, spec.height) + " pixels: decoding it needs " +
-                                 bytesText(needed) + ", more than this machine can spare (" +
-                                 bytesText(decodeBudgetBytes()) + ", three quarters of its memory)");
-    const auto base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
-    const bool srgb8 = base == OIIO::TypeDesc::UINT8;
-    const bool srgb16 = base == OIIO::TypeDesc::UINT16;
-    const bool otherInteger = base == OIIO::TypeDesc::INT8 || base == OIIO::TypeDesc::INT16 ||
-                              base == OIIO::TypeDesc::UINT32 || base == OIIO::TypeDesc::INT32;
-
-    auto fail = [&] {
-        std::string err = in.geterror();
-        if (err.empty()) err = "unknown error";
-        return EnvError(name, "cannot read the pixels (corrupt or truncated file?): " + err);
+                 float p0, float p1, const ChooseStrips& choose, float& maxFinite) {
+    StripReader reader(in, name);
+    const int width = reader.width(), height = reader.height(), step = reader.rowsPerStrip();
+    const std::size_t w = static_cast<std::size_t>(width);
+    const StripConsumer consume = choose ? choose(width, height) : StripConsumer{};
+    maxFinite = 0.0f;
+    auto report = [&](int y1) {
+        reportProgress(progress, "import", p0 + (p1 - p0) * static_cast<float>(y1) / static_cast<float>(height));
     };
-    Image img;
-    img.width = spec.width;
-    img.height = spec.height;
-    try {
-        img.px.resize(static_cast<std::size_t>(count));
-    } catch (const std::bad_alloc&) {
-        throw EnvError(name, "not enough memory to decode " + sizeText(spec.width, spec.height) +
-                                 " pixels (" + bytesText(needed) + ")");
-    }
-    const std::size_t width = static_cast<std::size_t>(spec.width);
-    const bool tiled = spec.tile_width > 0;
-    // Tiled files are read by rows of tiles, scanline files by strips of kStripRows.
-    const int rowsPerStrip = tiled ? std::max(1, spec.tile_height) * std::max(1, kStripRows / std::max(1, spec.tile_height))
-                                   : kStripRows;
-    // LDR formats are sRGB-encoded: their samples go through an exact table; linear from here on.
-    std::vector<std::uint8_t> raw8;
-    std::vector<std::uint16_t> raw16;
-    const std::vector<float>* table = srgb8 ? &srgbTable(8) : srgb16 ? &srgbTable(16) : nullptr;
-    float maxFinite = 0.0f;
-    const auto readRows = [&](int y0, int y1, OIIO::TypeDesc type, void* data, OIIO::stride_t xstride) {
-        const int yb = spec.y + y0, ye = spec.y + y1;
-        return tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, yb, ye, spec.z, spec.z + 1, 0, nc,
-                                     type, data, xstride)
-                     : in.read_scanlines(0, 0, yb, ye, spec.z, 0, nc, type, data, xstride);
-    };
-    for (int y0 = 0; y0 < spec.height; y0 += rowsPerStrip) {
-        const int y1 = std::min(spec.height, y0 + rowsPerStrip);
-        Rgb* out = img.px.data() + static_cast<std::size_t>(y0) * width;
-        const std::size_t n = static_cast<std::size_t>(y1 - y0) * width;
-        if (table) {
-            const std::size_t samples = n * static_cast<std::size_t>(nc);
-            const float* t = table->data();
-            if (srgb8) {
-                raw8.resize(samples);
-                if (!readRows(y0, y1, OIIO::TypeDesc::UINT8, raw8.data(), OIIO::AutoStride)) throw fail();
-            } else {
-                raw16.resize(samples);
-                if (!readRows(y0, y1, OIIO::TypeDesc::UINT16, raw16.data(), OIIO::AutoStride)) throw fail();
-            }
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::size_t k = i * static_cast<std::size_t>(nc);
-                float v[3];
-                for (int c = 0; c < nc; ++c)
-                    v[c] = t[srgb8 ? raw8[k + static_cast<std::size_t>(c)] : raw16[k + static_cast<std::size_t>(c)]];
-                out[i] = nc >= 3 ? Rgb(v[0], v[1], v[2]) : Rgb(v[0]);
-            }
-        } else {
-            // Floats straight into the RGB pixels (a stride of one Rgb), then grey replicated.
-            if (!readRows(y0, y1, OIIO::TypeDesc::FLOAT, out, sizeof(Rgb))) throw fail();
-            if (otherInteger)
-                for (std::size_t i = 0; i < n; ++i)
-                    for (int c = 0; c < nc; ++c)
-                        out[i][c] = static_cast<float>(srgbToLinear(std::clamp(static_cast<double>(out[i][c]), 0.0, 1.0)));
-            if (nc < 3)
-                for (std::size_t i = 0; i < n; ++i) out[i] = Rgb(out[i].x);
+    if (consume) {
+        const std::size_t stripPixels = static_cast<std::size_t>(std::min(step, height)) * w;
+        struct Slot {
+            std::vector<unsigned char> raw;
+            std::vector<Rgb> px;
+        };
+        std::array<Slot, 2> slots;
+        for (Slot& s : slots) s.px.resize(stripPixels);
+        Background background;  // declared after the slots: it is waited for before they go
+        for (int y0 = 0, k = 0; y0 < height; y0 += step, ++k) {
+            const int y1 = std::min(height, y0 + step);
+            Slot& slot = slots[static_cast<std::size_t>(k % 2)];
+            reader.read(y0, y1, slot.raw, slot.px.data());
+            background.run([&, y0, y1] {
+                const std::size_t n = static_cast<std::size_t>(y1 - y0) * w;
+                reader.convert(slot.raw, n, slot.px.data());
+                const SanitiseCounts strip = sanitiseFinite({slot.px.data(), n}, maxFinite);
+                addStripCounts(counts, strip);
+                consume(y0, y1, {slot.px.data(), n}, strip.inf > 0);
+            });
+            report(y1);
         }
-        const SanitiseCounts strip = sanitiseFinite({out, n}, maxFinite);
-        counts.nan += strip.nan;
-        counts.inf += strip.inf;
-        counts.negative += strip.negative;
-        counts.huge += strip.huge;
-        reportProgress(progress, "import", p0 + (p1 - p0) * static_cast<float>(y1) / static_cast<float>(spec.height));
+        background.wait();
+        return {};
+    }
+    Image img;
+    img.width = width;
+    img.height = height;
+    try {
+        img.px.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    } catch (const std::bad_alloc&) {
+        throw EnvError(name, "not enough memory to decode " + sizeText(width, height) + " pixels (" +
+                                 bytesText(static_cast<std::uint64_t>(img.px.size()) * sizeof(Rgb)) + ")");
+    }
+    std::vector<unsigned char> raw;
+    for (int y0 = 0; y0 < height; y0 += step) {
+        const int y1 = std::min(height, y0 + step);
+        Rgb* out = img.px.data() + static_cast<std::size_t>(y0) * w;
+        const std::size_t n = static_cast<std::size_t>(y1 - y0) * w;
+        reader.read(y0, y1, raw, out);
+        reader.convert(raw, n, out);
+        addStripCounts(counts, sanitiseFinite({out, n}, maxFinite));
+        report(y1);
     }
     if (counts.inf > 0) replaceInfinities(img.px, maxFinite);
     return img;
@@ -222,14 +318,17 @@ const OIIO::ImageSpec& readConfig() {
 // The end every read shares: the input as opened (null: OpenImageIO refused it), decoded,
 // sanitised, counted and recorded in the report.
 Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, ImportReport& report,
-                const Progress& progress, float p0, float p1) {
+                const Progress& progress, float p0, float p1, const ChooseStrips& choose = {},
+                float* maxFiniteOut = nullptr) {
     if (!in) {
         std::string err = OIIO::geterror();
         if (err.empty()) err = "unknown error";
         throw EnvError(name, "not a readable image: " + err);
     }
     SanitiseCounts counts;
-    Image img = readOpened(*in, name, counts, progress, p0, p1);
+    float maxFinite = 0.0f;
+    Image img = readOpened(*in, name, counts, progress, p0, p1, choose, maxFinite);
+    if (maxFiniteOut) *maxFiniteOut = maxFinite;
     in->close();
     addCounts(report, name, counts);
     report.files.push_back(name);
@@ -310,6 +409,11 @@ void addCounts(ImportReport& report, const fs::path& file, const SanitiseCounts&
 }
 
 Image readImageFile(const fs::path& file, ImportReport& report, const Progress& progress, float p0, float p1) {
+    return readImageFile(file, report, progress, p0, p1, {}, nullptr);
+}
+
+Image readImageFile(const fs::path& file, ImportReport& report, const Progress& progress, float p0, float p1,
+                    const ChooseStrips& choose, float* maxFinite) {
     std::error_code ec;
     if (!fs::exists(file, ec)) throw EnvError(file, "file not found");
     if (fs::is_directory(file, ec)) throw EnvError(file, "is a directory, expected an image file");
@@ -325,7 +429,8 @@ Image readImageFile(const fs::path& file, ImportReport& report, const Progress& 
             },
             bytes, file);
     }
-    return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report, progress, p0, p1);
+    return readInput(OIIO::ImageInput::open(file.string(), &readConfig()), file, report, progress, p0, p1, choose,
+                     maxFinite);
 }
 
 Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report,

@@ -12,6 +12,7 @@
 #include "mipgloss/ibl/resample.h"
 
 #include <algorithm>
+#include <memory>
 #include <set>
 
 namespace mipgloss {
@@ -120,8 +121,34 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
                                  "rt/lf/up/dn/ft/bk)");
     }
 
+    // A lat-long that the scatter converts is converted strip by strip as it is decoded
+    // (latlong.h, LatLongStream): the panorama is never whole in memory, and the conversion runs
+    // beside the decode. Anything else is decoded whole first.
     ImportReport report;
-    const Image img = readImageFile(path, report, progress, 0.0f, 0.3f);
+    std::unique_ptr<LatLongStream> stream;
+    const ChooseStrips choose = [&](int width, int height) -> StripConsumer {
+        EnvLayout layout = options.layout;
+        if (layout == EnvLayout::Auto) {
+            try {
+                layout = detectLayout(width, height, path);
+            } catch (const EnvError&) {
+                return {};  // decoded whole, refused by fromSingleImage as before
+            }
+        }
+        const int n = options.faceSize > 0 ? options.faceSize : std::max(1, width / 4);
+        if (layout != EnvLayout::LatLong || !latLongStreams(width, height, n)) return {};
+        stream = std::make_unique<LatLongStream>(width, height, n);
+        return [&stream](int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
+            stream->addStrip(y0, y1, rows, hasInfinity);
+        };
+    };
+    float maxFinite = 0.0f;
+    const Image img = readImageFile(path, report, progress, 0.0f, stream ? 0.8f : 0.3f, choose, &maxFinite);
+    if (stream) {
+        report.layout = EnvLayout::LatLong;
+        CubeMap cube = stream->finish(maxFinite, progress, 0.8f, 0.95f);
+        return finish(std::move(cube), std::move(report), 0, progress);
+    }
     reportProgress(progress, "import", 0.3f);
     return fromSingleImage(img, path, options, std::move(report), progress);
 }

@@ -211,13 +211,15 @@ public:
     [[gnu::always_inline]] Rgb tap(const Rgb* r, int i) const { return glm::min(r[i], limit_); }
 
     // Bilinear weights at u (wrapping) and at v (pole rows at v = 0 and 1).
-    Column column(double u) const {
+    Column column(double u) const { return columnAt(u, width); }
+    Row rowAt(double v) const { return rowAtV(v, height); }
+    static Column columnAt(double u, int width) {
         const double x = u * width - 0.5;
         const double fl = std::floor(x);
         const int i0 = (static_cast<int>(fl) % width + width) % width;
         return {i0, (i0 + 1) % width, static_cast<float>(x - fl)};
     }
-    Row rowAt(double v) const {
+    static Row rowAtV(double v, int height) {
         const double y = std::clamp(v * height - 0.5, -0.5, height - 0.5);  // row 0's centre at 0
         if (y < 0.0) return {0, 1, static_cast<float>(2.0 * (y + 0.5))};    // top pole to row 0
         if (y > height - 1)                                                  // last row to bottom pole
@@ -280,17 +282,18 @@ int bandRows(int height, int n) {
     return std::clamp(static_cast<int>(rows), 1, height);
 }
 
-// Runs band(b) for every band of `rowsPerBand` image rows: the even bands in parallel, then the
-// odd ones (see the note at the top), reporting from the calling thread.
-void forBandsInTwoPhases(int height, int rowsPerBand, const std::function<void(int j0, int j1)>& band,
-                         const ProgressSpan& progress) {
-    const int bands = (height + rowsPerBand - 1) / rowsPerBand;
+// Runs band(j0, j1) for every band of `rowsPerBand` image rows of [lo, hi): the even bands in
+// parallel, then the odd ones (see the note at the top), in `groups` groups per phase, reporting
+// after each from the calling thread.
+void forBandsInTwoPhases(int lo, int hi, int rowsPerBand, const std::function<void(int j0, int j1)>& band,
+                         const ProgressSpan& progress, int groups = 10) {
+    const int bands = (hi - lo + rowsPerBand - 1) / rowsPerBand;
     for (int parity = 0; parity < 2; ++parity) {
         const int count = (bands - parity + 1) / 2;
         if (count <= 0) continue;
-        forGroups(count, 10, [&](int k) {
+        forGroups(count, groups, [&](int k) {
             const int b = 2 * k + parity;
-            band(b * rowsPerBand, std::min(height, (b + 1) * rowsPerBand));
+            band(lo + b * rowsPerBand, std::min(hi, lo + (b + 1) * rowsPerBand));
         }, progress.sub(0.5 * parity, 0.5 * (parity + 1)));
     }
 }
@@ -318,8 +321,8 @@ struct StrataColumns {
     std::vector<float> sideT;          // v_y/(axis·ĥ) on the side face
     std::array<std::vector<float>, 2> polarS, polarT;  // u·ĥ and v·ĥ on +Y and −Y
 
-    StrataColumns(const Source& src, int ku, int n) {
-        const int nu = src.width * ku;
+    StrataColumns(int width, int ku, int n) {
+        const int nu = width * ku;
         const std::size_t size = static_cast<std::size_t>(nu);
         taps.resize(size);
         pixel.resize(size);
@@ -334,7 +337,7 @@ struct StrataColumns {
         for (int a = 0; a < nu; ++a) {
             const std::size_t i = static_cast<std::size_t>(a);
             const double u = (a + 0.5) / nu, phi = 2.0 * kPi * (u - 0.5);
-            taps[i] = src.column(u);
+            taps[i] = Source::columnAt(u, width);
             pixel[i] = a / ku;
             const float cosPhi = static_cast<float>(std::cos(phi)), sinPhi = static_cast<float>(std::sin(phi));
             const bool sideIsX = std::fabs(cosPhi) >= std::fabs(sinPhi);  // x wins ties with z
@@ -362,101 +365,56 @@ struct StrataColumns {
     // truncated, which is floor for q·n ≥ 0, as clamp(int(q·n)) was. |tan θ| is only used where
     // the pole's face wins (|cos θ| ≥ sin θ·|ma| ≥ sin θ/√2, so |tan θ| ≤ √2) and cot θ only where
     // a side face wins (|cot θ| < 1): both are capped at 2, which keeps the unused lane finite.
-    void texelsOfRow(float sn, float ct, int n, int* out) const {
-        const float polar = std::fabs(ct);
-        const float cot = std::clamp(ct / sn, -2.0f, 2.0f), tanAbs = std::min(sn / polar, 2.0f);
+    // The row's constants for texelOf: |cos θ|, capped cot θ and |tan θ|, and the pole face.
+    struct RowGeometry {
+        float sn, polar, cot, tanAbs;
+        std::size_t k;  // 0: +Y (cos θ > 0), 1: −Y
+        int polarBase;
+    };
+    static RowGeometry rowGeometry(float sn, float ct, int n) {
         const std::size_t k = ct > 0.0f ? 0 : 1;
-        const int polarBase = (2 + static_cast<int>(k)) * n * n;  // faces 2 and 3 are +Y and −Y
+        return {sn, std::fabs(ct), std::clamp(ct / sn, -2.0f, 2.0f), std::min(sn / std::fabs(ct), 2.0f), k,
+                (2 + static_cast<int>(k)) * n * n};  // faces 2 and 3 are +Y and −Y
+    }
+
+    // Index (face·n + y)·n + x of the texel holding stratum a of a row. A texel index q·n is
+    // clamped to [0, n − 1] in float before it is truncated, which is floor for q·n ≥ 0, as
+    // clamp(int(q·n)) was. |tan θ| is only used where the pole's face wins
+    // (|cos θ| ≥ sin θ·|ma| ≥ sin θ/√2, so |tan θ| ≤ √2) and cot θ only where a side face wins
+    // (|cot θ| < 1): both are capped at 2, which keeps the unused lane finite. Branch-free, so
+    // that texelsOfRow vectorises; the same arithmetic serves single strata (texelOf).
+    [[gnu::always_inline]] static int texelIndex(const RowGeometry& g, float ps, float pt, float mj, float ties, float st,
+                                                 int sd, int n) {
         const float m = static_cast<float>(n), top = static_cast<float>(n - 1);
-        const float* ps = polarS[k].data();
-        const float* pt = polarT[k].data();
+        const float sideMa = g.sn * mj;
+        // polar > sideMa where x wins ties, polar ≥ sideMa elsewhere (bitwise: no branch).
+        const bool polarWins = (g.polar > sideMa) | ((ties == 0.0f) & (g.polar == sideMa));
+        const float px = std::min(std::max(0.5f * (1.0f + g.tanAbs * ps) * m, 0.0f), top);
+        const float py = std::min(std::max(0.5f * (1.0f + g.tanAbs * pt) * m, 0.0f), top);
+        const float sy = std::min(std::max(0.5f * (1.0f + st * g.cot) * m, 0.0f), top);
+        const int polarIndex = g.polarBase + static_cast<int>(py) * n + static_cast<int>(px);
+        const int sideIndex = sd + static_cast<int>(sy) * n;
+        return polarWins ? polarIndex : sideIndex;
+    }
+
+    // The texels of every stratum of the row (sin θ, cos θ), into `out` (size() entries).
+    void texelsOfRow(float sn, float ct, int n, int* out) const {
+        const RowGeometry g = rowGeometry(sn, ct, n);
+        const float* ps = polarS[g.k].data();
+        const float* pt = polarT[g.k].data();
         const float* mj = major.data();
         const float* ties = polarTies.data();
         const float* st = sideT.data();
         const int* sd = side.data();
         const std::size_t count = size();
 #pragma omp simd
-        for (std::size_t a = 0; a < count; ++a) {
-            const float sideMa = sn * mj[a];
-            // polar > sideMa where x wins ties, polar ≥ sideMa elsewhere (bitwise: no branch).
-            const bool polarWins = (polar > sideMa) | ((ties[a] == 0.0f) & (polar == sideMa));
-            const float px = std::min(std::max(0.5f * (1.0f + tanAbs * ps[a]) * m, 0.0f), top);
-            const float py = std::min(std::max(0.5f * (1.0f + tanAbs * pt[a]) * m, 0.0f), top);
-            const float sy = std::min(std::max(0.5f * (1.0f + st[a] * cot) * m, 0.0f), top);
-            const int polarIndex = polarBase + static_cast<int>(py) * n + static_cast<int>(px);
-            const int sideIndex = sd[a] + static_cast<int>(sy) * n;
-            out[a] = polarWins ? polarIndex : sideIndex;
-        }
+        for (std::size_t a = 0; a < count; ++a) out[a] = texelIndex(g, ps[a], pt[a], mj[a], ties[a], st[a], sd[a], n);
+    }
+    int texelOf(std::size_t a, float sn, float ct, int n) const {
+        const RowGeometry g = rowGeometry(sn, ct, n);
+        return texelIndex(g, polarS[g.k][a], polarT[g.k][a], major[a], polarTies[a], sideT[a], side[a], n);
     }
 };
-
-void scatter(const Source& src, const Strata& st, CubeMap& cube, const ProgressSpan& progress) {
-    const int n = cube.size();
-    const int nv = src.height * st.kv;
-    const StrataColumns columns(src, st.ku, n);
-    // One stratum per pixel: its centre is the pixel's, and its value the pixel's own.
-    const bool oneStratumPerPixel = st.ku == 1 && st.kv == 1;
-    std::vector<float> weight(6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0f);
-    auto texelAt = [&](int index) -> Rgb& {
-        return cube.at(kAllFaces[static_cast<std::size_t>(index / (n * n))], index % n, (index / n) % n);
-    };
-
-    forBandsInTwoPhases(src.height, bandRows(src.height, n), [&](int j0, int j1) {
-        std::vector<Rgb> line(oneStratumPerPixel ? 0 : static_cast<std::size_t>(src.width));
-        std::vector<int> texels(columns.size());
-        const Source::Column* taps = columns.taps.data();
-        for (int b = j0 * st.kv; b < j1 * st.kv; ++b) {
-            const double v = (b + 0.5) / nv;
-            const float ct = static_cast<float>(std::cos(kPi * v)), sn = static_cast<float>(std::sin(kPi * v));
-            const double w = std::cos(kPi * b / nv) - std::cos(kPi * (b + 1) / nv);  // per unit Δφ
-            columns.texelsOfRow(sn, ct, n, texels.data());
-            // The row interpolated to this stratum row's θ once, then read across.
-            const Rgb* pixels = src.row(b + 1);
-            if (!oneStratumPerPixel) {
-                const Source::Row r = src.rowAt(v);
-                const Rgb* r0 = src.row(r.p0);
-                const Rgb* r1 = src.row(r.p1);
-                for (int i = 0; i < src.width; ++i)
-                    line[static_cast<std::size_t>(i)] = src.tap(r0, i) * (1.0f - r.fy) + src.tap(r1, i) * r.fy;
-            }
-            // Neighbouring strata mostly share a texel: sum runs before touching the cube.
-            auto flush = [&](int run, const Rgb& runSum, int runCount) {
-                texelAt(run) += Rgb(w * glm::dvec3(runSum));
-                weight[static_cast<std::size_t>(run)] += static_cast<float>(w * runCount);
-            };
-            auto value = [&](std::size_t a) {
-                if (oneStratumPerPixel) return src.tap(pixels, columns.pixel[a]);
-                const Source::Column& c = taps[a];
-                return line[static_cast<std::size_t>(c.i0)] * (1.0f - c.fx) + line[static_cast<std::size_t>(c.i1)] * c.fx;
-            };
-            const std::size_t count = columns.size();
-            std::size_t start = 0;
-            Rgb runSum = value(0);
-            for (std::size_t a = 1; a < count; ++a) {
-                if (texels[a] != texels[start]) {
-                    flush(texels[start], runSum, static_cast<int>(a - start));
-                    start = a;
-                    runSum = Rgb(0.0f);
-                }
-                runSum += value(a);
-            }
-            flush(texels[start], runSum, static_cast<int>(count - start));
-        }
-    }, progress.sub(0.0, 0.95));
-
-    // Normalise; a texel that got no stratum (none should, at this spacing) reads its centre.
-    parallelFor(0, 6 * n, [&](int row) {
-        const Face f = kAllFaces[static_cast<std::size_t>(row / n)];
-        const int y = row % n;
-        for (int x = 0; x < n; ++x) {
-            const float wt = weight[(static_cast<std::size_t>(f) * static_cast<std::size_t>(n) + static_cast<std::size_t>(y)) *
-                                        static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
-            Rgb& texel = cube.at(f, x, y);
-            texel = wt > 0.0f ? texel / wt : src.sample(texelDirection(f, x, y, n));
-        }
-    });
-    progress.report(1.0);
-}
 
 // ---- Gather ----------------------------------------------------------------------------------
 
@@ -777,7 +735,7 @@ void splatExcess(const std::vector<ExcessPixel>& pixels, int width, int height, 
     const double pixelPhi = 2.0 * kPi / width, pixelTheta = kPi / height;
     const int cu = std::max(1, static_cast<int>(std::ceil(pixelPhi / narrow)));
     const int cv = std::max(1, static_cast<int>(std::ceil(pixelTheta / narrow)));
-    forBandsInTwoPhases(height, bandRows(height, n), [&](int j0, int j1) {
+    forBandsInTwoPhases(0, height, bandRows(height, n), [&](int j0, int j1) {
         auto byRow = [](const ExcessPixel& p, int j) { return p.j < j; };
         const auto first = std::lower_bound(pixels.begin(), pixels.end(), j0, byRow);
         const auto last = std::lower_bound(first, pixels.end(), j1, byRow);
@@ -785,6 +743,385 @@ void splatExcess(const std::vector<ExcessPixel>& pixels, int width, int height, 
         for (auto p = first; p != last; ++p) splat.splat(*p);
     }, progress);
 }
+
+// ---- Scatter, strip by strip ------------------------------------------------------------------
+//
+// The scatter reads the image once in row order, so it runs as the strips are decoded (the
+// decoder hands each strip over while it reads the next: import.cpp). What stands in the way is
+// the bright split: T comes from the whole image's weighted mean, and every tap is clamped to it.
+// Strip k is therefore clamped to a lower bound of T known when it arrives,
+//     T_k = 16 × (the weighted sums of the finite rows so far) / (the whole image's weight),
+// which cannot exceed T: the sums only grow (non-negative terms, rounding is monotone) and the cap
+// only raises T. The pixels of the strip above T_k are kept (candidates), and once T is known the
+// difference D = min(L, T) − min(L, T_k) of each is scattered through the same strata (the
+// quadrature is linear in the pixel values), so the cube is the quadrature of min(L, T) exactly as
+// if T had been known from the start; only rounding differs. Nothing is subtracted, so a sun far
+// above T_k costs no precision. A strip with more than 1/64 of its pixels above T_k (near the top
+// pole the sums are still small), a strip holding +Inf (replaced by the image's largest finite
+// value only at the end), and the first and last strips (their rows make the pole values, means
+// of the clamped first and last rows) are deferred: kept whole and scattered at the end with T.
+// What is held besides the cube: the deferred strips, two rows at each end of the other strips,
+// the candidates (at most 1/64 of those strips) and per-row sums.
+//
+// Determinism: the strips are fixed by the caller (import: the decoder's strips of 256 rows;
+// latLongToCube: the same), the steps run one after another, each over bands in two phases, the
+// deferred rows at the end in row order and the candidates in image order after them. Nothing
+// depends on the number of threads.
+class ScatterStream {
+public:
+    ScatterStream(int width, int height, int n)
+        : width_(width), height_(height), n_(n), st_(strataFor(width, height, n)), nv_(height * st_.kv),
+          one_(st_.ku == 1 && st_.kv == 1), columns_(width, st_.ku, n), rowsPerBand_(bandRows(height, n)), cube_(n),
+          weight_(6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0f),
+          rowSum_(static_cast<std::size_t>(height), glm::dvec3(0.0)), rowWeight_(static_cast<std::size_t>(height)),
+          limit_(static_cast<std::size_t>(height), std::numeric_limits<float>::infinity()),
+          row_(static_cast<std::size_t>(height), nullptr), kept_(static_cast<std::size_t>(height)),
+          done_(static_cast<std::size_t>(height), 0), deferred_(static_cast<std::size_t>(height), 0) {
+        for (int j = 0; j < height; ++j) {
+            rowWeight_[static_cast<std::size_t>(j)] = std::cos(kPi * j / height) - std::cos(kPi * (j + 1) / height);
+            weightSum_ += rowWeight_[static_cast<std::size_t>(j)] * width;
+        }
+    }
+
+    // Rows [y0, y1), the next in order, sanitised except for +Inf (hasInfinity says whether
+    // there is any). `rows` need only live for the call: what is needed later is copied.
+    void addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
+        if (y0 != next_ || y1 <= y0 || y1 > height_ || rows.size() != static_cast<std::size_t>(y1 - y0) * width_)
+            throw std::invalid_argument("lat-long strip rows " + std::to_string(y0) + ".." + std::to_string(y1) +
+                                        " out of order or of the wrong size");
+        next_ = y1;
+        for (int j = y0; j < y1; ++j) row_[static_cast<std::size_t>(j)] = rows.data() + static_cast<std::size_t>(j - y0) * width_;
+        bool defer = hasInfinity || y0 == 0 || y1 == height_;
+        float limit = std::numeric_limits<float>::infinity();
+        Strip strip{y0, y1, false, hasInfinity, limit, {}};
+        if (!hasInfinity) {
+            sumRows(y0, y1);
+            for (int j = y0; j < y1; ++j) partial_ += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
+            const glm::dvec3 mean = partial_ / weightSum_;
+            limit = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+        }
+        if (!defer) {
+            strip.candidates = above(y0, y1, limit);
+            defer = strip.candidates.size() > static_cast<std::size_t>(y1 - y0) * width_ / 64;
+        }
+        strip.deferred = defer;
+        strip.limit = limit;
+        ++stats_.strips;
+        stats_.deferred += defer ? 1 : 0;
+        stats_.candidates += defer ? 0 : strip.candidates.size();
+        if (defer) {
+            strip.candidates.clear();
+            for (int j = y0; j < y1; ++j) {
+                deferred_[static_cast<std::size_t>(j)] = 1;
+                keep(j);
+            }
+        } else {
+            for (int j = y0; j < y1; ++j) limit_[static_cast<std::size_t>(j)] = limit;
+            // Rows whose strata read only rows clamped now (j − 1 .. j + 1, poles excluded).
+            int lo = std::max(1, y0 - 1);
+            while (lo < y1 - 1 && !ready(lo)) ++lo;
+            static const Progress silent;  // in the background: only the caller's thread reports
+            if (lo < y1 - 1) scatterRows(lo, y1 - 1, {silent, 0.0f, 1.0f}, 1);
+            // The rows that rows left for the end may read.
+            for (int j : {y0, y0 + 1, y1 - 2, y1 - 1})
+                if (j >= y0 && j < y1) keep(j);
+        }
+        for (int j = y0; j < y1; ++j)
+            if (kept_[static_cast<std::size_t>(j)].empty()) row_[static_cast<std::size_t>(j)] = nullptr;
+        strips_.push_back(std::move(strip));
+    }
+
+    // After the last strip: T, the deferred rows, the candidates' differences, the normalising
+    // and the excess. +Inf in the deferred strips becomes `maxFinite`.
+    CubeMap finish(float maxFinite, const ProgressSpan& progress) {
+        if (next_ != height_) throw std::invalid_argument("lat-long image incomplete: " + std::to_string(next_) + " of " +
+                                                          std::to_string(height_) + " rows");
+        for (const Strip& s : strips_) {
+            if (!s.infinity) continue;
+            for (int j = s.y0; j < s.y1; ++j)
+                for (Rgb& p : kept_[static_cast<std::size_t>(j)])
+                    for (int c = 0; c < 3; ++c)
+                        if (std::isinf(p[c])) p[c] = maxFinite;
+            sumRows(s.y0, s.y1);
+        }
+        const float threshold = finalThreshold();
+        const float limit = threshold > 0.0f ? threshold : std::numeric_limits<float>::infinity();
+        for (const Strip& s : strips_)
+            if (s.deferred)
+                for (int j = s.y0; j < s.y1; ++j) limit_[static_cast<std::size_t>(j)] = limit;
+        poleTop_ = poleRow(0);
+        poleBottom_ = poleRow(height_ - 1);
+        progress.report(0.1);
+        // The rows not scattered yet, in runs, in row order.
+        for (int j = 0; j < height_;) {
+            if (done_[static_cast<std::size_t>(j)]) {
+                ++j;
+                continue;
+            }
+            int end = j;
+            while (end < height_ && !done_[static_cast<std::size_t>(end)]) ++end;
+            scatterRows(j, end, progress.sub(0.1 + 0.7 * j / height_, 0.1 + 0.7 * end / height_), 10);
+            j = end;
+        }
+        correctCandidates(limit);
+        normalise();
+        progress.report(0.85);
+        if (threshold > 0.0f) {
+            const std::vector<ExcessPixel> excess = excessPixels(threshold);
+            stats_.excess = excess.size();
+            splatExcess(excess, width_, height_, cube_, progress.sub(0.85, 1.0));
+        }
+        progress.report(1.0);
+        return std::move(cube_);
+    }
+
+    const io_detail::LatLongStream::Stats& stats() const { return stats_; }
+
+private:
+    struct Candidate {
+        int i, j;
+        Rgb value;
+    };
+    struct Strip {
+        int y0, y1;
+        bool deferred, infinity;
+        float limit;                       // T_k (immediate strips)
+        std::vector<Candidate> candidates;  // immediate strips: pixels above T_k, in image order
+    };
+
+    bool ready(int j) const {
+        for (int r = j - 1; r <= j + 1; ++r)
+            if (r < 0 || r >= next_ || deferred_[static_cast<std::size_t>(r)] || !row_[static_cast<std::size_t>(r)])
+                return false;
+        return true;
+    }
+    void keep(int j) {
+        auto& k = kept_[static_cast<std::size_t>(j)];
+        if (k.empty()) k.assign(row_[static_cast<std::size_t>(j)], row_[static_cast<std::size_t>(j)] + width_);
+        row_[static_cast<std::size_t>(j)] = k.data();
+    }
+
+    void sumRows(int y0, int y1) {
+        parallelFor(y0, y1, [&](int j) {
+            const Rgb* r = row_[static_cast<std::size_t>(j)];
+            glm::dvec3 sum(0.0);
+            for (int i = 0; i < width_; ++i) sum += glm::dvec3(r[i]);
+            rowSum_[static_cast<std::size_t>(j)] = sum;
+        });
+    }
+
+    // The pixels of rows [y0, y1) whose brightest channel exceeds `limit`, in image order.
+    std::vector<Candidate> above(int y0, int y1, float limit) const {
+        std::vector<std::vector<Candidate>> parts(static_cast<std::size_t>(y1 - y0));
+        parallelFor(y0, y1, [&](int j) {
+            const Rgb* r = row_[static_cast<std::size_t>(j)];
+            auto& part = parts[static_cast<std::size_t>(j - y0)];
+            for (int i = 0; i < width_; ++i)
+                if (peakOf(r[i]) > limit) part.push_back({i, j, r[i]});
+        });
+        std::vector<Candidate> out;
+        for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+        return out;
+    }
+
+    // T: 16 × the brightest channel's weighted mean, raised to the cap-th largest peak when more
+    // than cap = 2 % of the pixels exceed it. Every pixel above 16 × the mean is a candidate or
+    // in a deferred strip, since 16 × the mean is at least every T_k.
+    float finalThreshold() const {
+        glm::dvec3 sum(0.0);
+        for (int j = 0; j < height_; ++j) sum += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
+        const glm::dvec3 mean = sum / weightSum_;
+        float threshold = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+        const std::size_t size = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), cap = size / 50;
+        if (cap > 0 && cap < size) {
+            std::vector<float> peaks;
+            forEachBright(threshold, [&](int, int, const Rgb& p) { peaks.push_back(peakOf(p)); });
+            if (peaks.size() >= cap) {
+                const auto nth = peaks.begin() + static_cast<std::ptrdiff_t>(peaks.size() - cap);
+                std::nth_element(peaks.begin(), nth, peaks.end());
+                threshold = std::max(threshold, *nth);
+            }
+        }
+        return threshold;
+    }
+    // Calls f(i, j, value) for every pixel whose peak exceeds `threshold` (at least every T_k), in
+    // image order.
+    template <class F> void forEachBright(float threshold, F f) const {
+        for (const Strip& s : strips_) {
+            if (s.deferred) {
+                for (int j = s.y0; j < s.y1; ++j) {
+                    const Rgb* r = kept_[static_cast<std::size_t>(j)].data();
+                    for (int i = 0; i < width_; ++i)
+                        if (peakOf(r[i]) > threshold) f(i, j, r[i]);
+                }
+            } else {
+                for (const Candidate& c : s.candidates)
+                    if (peakOf(c.value) > threshold) f(c.i, c.j, c.value);
+            }
+        }
+    }
+    std::vector<ExcessPixel> excessPixels(float threshold) const {
+        std::vector<ExcessPixel> out;
+        forEachBright(threshold, [&](int i, int j, const Rgb& p) { out.push_back({i, j, glm::max(p - Rgb(threshold), Rgb(0.0f))}); });
+        return out;
+    }
+
+    // A pole's value: the mean of the clamped row next to it, the same in every column.
+    std::vector<Rgb> poleRow(int j) const {
+        const Rgb* r = row_[static_cast<std::size_t>(j)];
+        const Rgb limit(limit_[static_cast<std::size_t>(j)]);
+        glm::dvec3 sum(0.0);
+        for (int i = 0; i < width_; ++i) sum += glm::dvec3(glm::min(r[i], limit));
+        return std::vector<Rgb>(static_cast<std::size_t>(width_), Rgb(sum / static_cast<double>(width_)));
+    }
+    // Padded row p (0: the top pole, height + 1: the bottom pole) and its clamp.
+    const Rgb* padded(int p) const {
+        if (p == 0) return poleTop_.data();
+        if (p == height_ + 1) return poleBottom_.data();
+        return row_[static_cast<std::size_t>(p - 1)];
+    }
+    float paddedLimit(int p) const {
+        return p == 0 || p == height_ + 1 ? std::numeric_limits<float>::infinity() : limit_[static_cast<std::size_t>(p - 1)];
+    }
+
+    Rgb& texel(int index) {
+        return cube_.at(kAllFaces[static_cast<std::size_t>(index / (n_ * n_))], index % n_, (index / n_) % n_);
+    }
+    struct StratumRow {
+        double v, w;  // centre (v) and solid angle per unit Δφ
+        float sn, ct;
+    };
+    StratumRow stratumRow(int b) const {
+        const double v = (b + 0.5) / nv_;
+        return {v, std::cos(kPi * b / nv_) - std::cos(kPi * (b + 1) / nv_), static_cast<float>(std::sin(kPi * v)),
+                static_cast<float>(std::cos(kPi * v))};
+    }
+
+    // Every stratum of image rows [j0, j1) added with its solid angle to the texel that holds it:
+    // bands in two phases, `groups` groups per phase (1 in the background).
+    void scatterRows(int j0, int j1, const ProgressSpan& progress, int groups) {
+        forBandsInTwoPhases(j0, j1, rowsPerBand_, [&](int b0, int b1) { band(b0, b1); }, progress, groups);
+        for (int j = j0; j < j1; ++j) done_[static_cast<std::size_t>(j)] = 1;
+    }
+    void band(int j0, int j1) {
+        std::vector<Rgb> line(one_ ? 0 : static_cast<std::size_t>(width_));
+        std::vector<int> texels(columns_.size());
+        const Source::Column* taps = columns_.taps.data();
+        for (int b = j0 * st_.kv; b < j1 * st_.kv; ++b) {
+            const StratumRow sr = stratumRow(b);
+            columns_.texelsOfRow(sr.sn, sr.ct, n_, texels.data());
+            // The row interpolated to this stratum row's θ once, then read across.
+            const Rgb* pixels = one_ ? row_[static_cast<std::size_t>(b)] : nullptr;
+            const Rgb pixelLimit(one_ ? limit_[static_cast<std::size_t>(b)] : 0.0f);
+            if (!one_) {
+                const Source::Row r = Source::rowAtV(sr.v, height_);
+                const Rgb* r0 = padded(r.p0);
+                const Rgb* r1 = padded(r.p1);
+                const Rgb l0(paddedLimit(r.p0)), l1(paddedLimit(r.p1));
+                for (int i = 0; i < width_; ++i)
+                    line[static_cast<std::size_t>(i)] = glm::min(r0[i], l0) * (1.0f - r.fy) + glm::min(r1[i], l1) * r.fy;
+            }
+            // Neighbouring strata mostly share a texel: sum runs before touching the cube.
+            auto flush = [&](int run, const Rgb& runSum, int runCount) {
+                texel(run) += Rgb(sr.w * glm::dvec3(runSum));
+                weight_[static_cast<std::size_t>(run)] += static_cast<float>(sr.w * runCount);
+            };
+            auto value = [&](std::size_t a) {
+                if (one_) return glm::min(pixels[columns_.pixel[a]], pixelLimit);
+                const Source::Column& c = taps[a];
+                return line[static_cast<std::size_t>(c.i0)] * (1.0f - c.fx) + line[static_cast<std::size_t>(c.i1)] * c.fx;
+            };
+            const std::size_t count = columns_.size();
+            std::size_t start = 0;
+            Rgb runSum = value(0);
+            for (std::size_t a = 1; a < count; ++a) {
+                if (texels[a] != texels[start]) {
+                    flush(texels[start], runSum, static_cast<int>(a - start));
+                    start = a;
+                    runSum = Rgb(0.0f);
+                }
+                runSum += value(a);
+            }
+            flush(texels[start], runSum, static_cast<int>(count - start));
+        }
+    }
+
+    // Each candidate's D = min(L, T) − min(L, T_k), added through every stratum whose
+    // interpolation reads its pixel, with that stratum's weight for it. In image order, on the
+    // calling thread: they are few (at most 1/64 of the strips they came from).
+    void correctCandidates(float limit) {
+        const int nu = static_cast<int>(columns_.size());
+        for (const Strip& s : strips_) {
+            if (s.deferred) continue;
+            for (const Candidate& c : s.candidates) {
+                const Rgb d = glm::min(c.value, Rgb(limit)) - glm::min(c.value, Rgb(s.limit));
+                if (d == Rgb(0.0f)) continue;
+                ++stats_.corrected;
+                const int p = c.j + 1;  // padded row
+                // Stratum rows whose interpolation rows include p, and columns whose taps include i.
+                const int b0 = std::max(0, (c.j - 1) * st_.kv), b1 = std::min(nv_, (c.j + 2) * st_.kv);
+                for (int b = b0; b < b1; ++b) {
+                    const StratumRow sr = stratumRow(b);
+                    float wy = 0.0f;
+                    if (one_) {
+                        wy = b == c.j ? 1.0f : 0.0f;
+                    } else {
+                        const Source::Row r = Source::rowAtV(sr.v, height_);
+                        wy = (r.p0 == p ? 1.0f - r.fy : 0.0f) + (r.p1 == p ? r.fy : 0.0f);
+                    }
+                    if (wy == 0.0f) continue;
+                    for (int a = (c.i - 1) * st_.ku; a < (c.i + 2) * st_.ku; ++a) {
+                        const std::size_t col = static_cast<std::size_t>(((a % nu) + nu) % nu);
+                        float wx = 0.0f;
+                        if (one_) {
+                            wx = columns_.pixel[col] == c.i ? 1.0f : 0.0f;
+                        } else {
+                            const Source::Column& t = columns_.taps[col];
+                            wx = (t.i0 == c.i ? 1.0f - t.fx : 0.0f) + (t.i1 == c.i ? t.fx : 0.0f);
+                        }
+                        if (wx == 0.0f) continue;
+                        texel(columns_.texelOf(col, sr.sn, sr.ct, n_)) += Rgb(sr.w * glm::dvec3(d * (wx * wy)));
+                    }
+                }
+            }
+        }
+    }
+
+    // Sums to means; a texel that got no stratum (none does at this spacing, strataFor) stays 0.
+    void normalise() {
+        parallelFor(0, 6 * n_, [&](int r) {
+            const Face f = kAllFaces[static_cast<std::size_t>(r / n_)];
+            const int y = r % n_;
+            for (int x = 0; x < n_; ++x) {
+                const float wt = weight_[(static_cast<std::size_t>(f) * static_cast<std::size_t>(n_) + static_cast<std::size_t>(y)) *
+                                             static_cast<std::size_t>(n_) + static_cast<std::size_t>(x)];
+                Rgb& t = cube_.at(f, x, y);
+                t = wt > 0.0f ? t / wt : Rgb(0.0f);
+            }
+        });
+    }
+
+    const int width_, height_, n_;
+    const Strata st_;
+    const int nv_;
+    const bool one_;  // one stratum per pixel: its centre is the pixel's, its value the pixel's own
+    const StrataColumns columns_;
+    const int rowsPerBand_;
+    CubeMap cube_;
+    std::vector<float> weight_;
+    std::vector<glm::dvec3> rowSum_;  // Σ over the row's pixels
+    std::vector<double> rowWeight_;   // cos θ_j − cos θ_{j+1}
+    double weightSum_ = 0.0;          // Σ rowWeight·width, the image's weight
+    glm::dvec3 partial_{0.0};         // Σ rowWeight·rowSum over the finite rows so far
+    std::vector<float> limit_;        // each row's clamp: T_k, or T for deferred rows once known
+    std::vector<const Rgb*> row_;     // the rows readable now
+    std::vector<std::vector<Rgb>> kept_;
+    std::vector<char> done_, deferred_;
+    std::vector<Strip> strips_;
+    std::vector<Rgb> poleTop_, poleBottom_;
+    int next_ = 0;
+    io_detail::LatLongStream::Stats stats_;
+};
 
 // Gather when its reads cost less than the scatter's strata (kReadCostInStrata). Both are
 // well within the previous conversion's error against the exact texel means
@@ -795,20 +1132,33 @@ bool gathers(int width, int height, int n) {
     return kReadCostInStrata * gatherReads(width, height, n) < strata;
 }
 
-CubeMap convert(const LatLongView& img, int faceSize, const ProgressSpan& progress) {
-    if (img.width < 1 || img.height < 1 || faceSize < 1 ||
-        img.pixels.size() != static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height))
-        throw std::invalid_argument("latLongToCube: " + std::to_string(img.width) + " × " + std::to_string(img.height) +
-                                    " image with " + std::to_string(img.pixels.size()) + " pixels, face size " +
+void checkSizes(int width, int height, std::size_t pixels, int faceSize) {
+    if (width < 1 || height < 1 || faceSize < 1 || pixels != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        throw std::invalid_argument("latLongToCube: " + std::to_string(width) + " × " + std::to_string(height) +
+                                    " image with " + std::to_string(pixels) + " pixels, face size " +
                                     std::to_string(faceSize));
+}
+
+CubeMap convert(const LatLongView& img, int faceSize, const ProgressSpan& progress) {
+    checkSizes(img.width, img.height, img.pixels.size(), faceSize);
+    if (!gathers(img.width, img.height, faceSize)) {
+        // The scatter takes the image in the decoder's strips, so that a decoded file and an image
+        // in memory give the same cube to the bit.
+        ScatterStream stream(img.width, img.height, faceSize);
+        const std::size_t w = static_cast<std::size_t>(img.width);
+        for (int y0 = 0; y0 < img.height; y0 += io_detail::kLatLongStripRows) {
+            const int y1 = std::min(img.height, y0 + io_detail::kLatLongStripRows);
+            stream.addStrip(y0, y1, img.pixels.subspan(static_cast<std::size_t>(y0) * w, static_cast<std::size_t>(y1 - y0) * w),
+                            false);
+            progress.report(0.5 * y1 / img.height);
+        }
+        return stream.finish(0.0f, progress.sub(0.5, 1.0));
+    }
     const BrightSplit split = splitBright(img);
     progress.report(0.05);
     const Source src(img, split.limit);
     CubeMap cube(faceSize);
-    if (gathers(img.width, img.height, faceSize))
-        gather(src, cube, progress.sub(0.05, 0.9));
-    else
-        scatter(src, strataFor(img.width, img.height, faceSize), cube, progress.sub(0.05, 0.9));
+    gather(src, cube, progress.sub(0.05, 0.9));
     splatExcess(split.excess, img.width, img.height, cube, progress.sub(0.9, 1.0));
     return cube;
 }
@@ -830,6 +1180,30 @@ namespace io_detail {
 CubeMap latLongToCube(const Image& img, int faceSize, const Progress& progress, float p0, float p1) {
     return convert({img.width, img.height, img.px}, faceSize, {progress, p0, p1});
 }
+
+bool latLongStreams(int width, int height, int faceSize) {
+    return width >= 1 && height >= 1 && faceSize >= 1 && !gathers(width, height, faceSize);
+}
+
+struct LatLongStream::Impl {
+    ScatterStream stream;
+};
+
+LatLongStream::LatLongStream(int width, int height, int faceSize) {
+    checkSizes(width, height, static_cast<std::size_t>(width) * static_cast<std::size_t>(height), faceSize);
+    impl_ = std::make_unique<Impl>(Impl{ScatterStream(width, height, faceSize)});
+}
+LatLongStream::~LatLongStream() = default;
+
+void LatLongStream::addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
+    impl_->stream.addStrip(y0, y1, rows, hasInfinity);
+}
+
+CubeMap LatLongStream::finish(float maxFinite, const Progress& progress, float p0, float p1) {
+    return impl_->stream.finish(maxFinite, {progress, p0, p1});
+}
+
+const LatLongStream::Stats& LatLongStream::stats() const { return impl_->stream.stats(); }
 
 }  // namespace io_detail
 

@@ -5,10 +5,49 @@
 
 #include "decode.h"
 
+#include <memory>
+#include <span>
+
 namespace mipgloss::io_detail {
 
 // Converts at face size `faceSize`, reporting progress from p0 to p1. Borders are left for the
 // caller's makeSeamless.
 CubeMap latLongToCube(const Image& img, int faceSize, const Progress& progress, float p0, float p1);
+
+// Rows per strip in which the scatter takes an image (the decoder's strips: decode.cpp).
+inline constexpr int kLatLongStripRows = 256;
+
+// Whether a width × height lat-long converts at face size `faceSize` by the scatter, which can
+// take the image strip by strip as it is decoded (LatLongStream); otherwise the whole image is
+// needed (the gather: a cube about as fine as the image or finer).
+bool latLongStreams(int width, int height, int faceSize);
+
+// The scatter fed strip by strip (latlong.cpp, "Scatter, strip by strip"): the same cube, to the
+// bit, as latLongToCube of the whole image in strips of kLatLongStripRows. Strips come in order,
+// each sanitised except for +Inf; finish replaces +Inf by the image's largest finite value.
+// Throws std::invalid_argument for strips out of order or finish before the last row.
+class LatLongStream {
+public:
+    LatLongStream(int width, int height, int faceSize);
+    ~LatLongStream();
+    LatLongStream(const LatLongStream&) = delete;
+    LatLongStream& operator=(const LatLongStream&) = delete;
+    void addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity);
+    // Borders are left for the caller's makeSeamless; reports stage "import" from p0 to p1.
+    CubeMap finish(float maxFinite, const Progress& progress, float p0, float p1);
+
+    // What took which path, for tests and benchmarks.
+    struct Stats {
+        int strips = 0, deferred = 0;  // strips taken, and kept whole for the end
+        std::size_t candidates = 0;    // pixels of the other strips above their clamp T_k
+        std::size_t corrected = 0;     // of those, the ones whose D = min(L, T) − min(L, T_k) was not 0
+        std::size_t excess = 0;        // pixels above T, splatted
+    };
+    const Stats& stats() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace mipgloss::io_detail

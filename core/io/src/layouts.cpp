@@ -103,14 +103,16 @@ constexpr const char* kAcceptedProportions =
     "accepted proportions: 2:1 lat-long, 4:3 horizontal cross, 3:4 vertical cross, "
     "6:1 horizontal strip, 1:6 vertical strip, or six square face files";
 
-EnvLayout detectLayout(const Image& img, const fs::path& file) {
+EnvLayout detectLayout(const Image& img, const fs::path& file) { return detectLayout(img.width, img.height, file); }
+
+EnvLayout detectLayout(int width, int height, const fs::path& file) {
     // Within 2 % of a known proportion: the layout's own check then names an exact mismatch.
-    const double ratio = static_cast<double>(img.width) / static_cast<double>(img.height);
+    const double ratio = static_cast<double>(width) / static_cast<double>(height);
     for (const Proportion& p : kProportions) {
         const double want = static_cast<double>(p.w) / static_cast<double>(p.h);
         if (std::fabs(ratio / want - 1.0) < 0.02) return p.layout;
     }
-    throw EnvError(file, "cannot tell the layout of a " + sizeText(img.width, img.height) +
+    throw EnvError(file, "cannot tell the layout of a " + sizeText(width, height) +
                              " image; " + kAcceptedProportions);
 }
 

@@ -23,6 +23,7 @@ void copyFace(const Image& img, int x0, int y0, int n, CubeMap& cube, Face f, Pl
 
 // The layout whose proportions the image has (within 2 %). Throws EnvError naming `file`.
 EnvLayout detectLayout(const Image& img, const std::filesystem::path& file);
+EnvLayout detectLayout(int width, int height, const std::filesystem::path& file);
 
 // A cross or strip -> cube (not lat-long). Throws EnvError when the size does not fit the layout.
 CubeMap cubeFromLayout(const Image& img, EnvLayout layout, const std::filesystem::path& file);
