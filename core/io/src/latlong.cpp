@@ -14,6 +14,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -991,6 +992,11 @@ private:
         double v, w;  // centre (v) and solid angle per unit Δφ
         float sn, ct;
     };
+    // Stratum row b: its centre, and its strata's solid angle per unit Δφ, cos θ0 − cos θ1 (every
+    // stratum row has ku strata per pixel: fewer towards the poles, keeping them half the narrowest
+    // texel apart by arc length sin θ·Δφ, cut the 8k → 512² strata by a third but put level 0 up
+    // to a fifth further from the exact texel means on the 1024 × 512 HDRIs, forest at N 64:
+    // 0.72 % against 0.61 %).
     StratumRow stratumRow(int b) const {
         const double v = (b + 0.5) / nv_;
         return {v, std::cos(kPi * b / nv_) - std::cos(kPi * (b + 1) / nv_), static_cast<float>(std::sin(kPi * v)),
@@ -1003,46 +1009,62 @@ private:
         forBandsInTwoPhases(j0, j1, rowsPerBand_, [&](int b0, int b1) { band(b0, b1); }, progress, groups);
         for (int j = j0; j < j1; ++j) done_[static_cast<std::size_t>(j)] = 1;
     }
+    // Per stratum row: the texels (texelsOfRow, vectorised), the stratum values into a padded
+    // four-float array (the row interpolated to the stratum row's θ once, vectorised, then read
+    // across at each stratum's u), and the runs of strata that share a texel summed with one
+    // vector add per stratum before the cube is touched. The arithmetic per channel is that of a
+    // plain loop, so the cube is the same to the bit.
     void band(int j0, int j1) {
-        std::vector<Rgb> line(one_ ? 0 : static_cast<std::size_t>(width_));
-        std::vector<int> texels(columns_.size());
-        const Source::Column* taps = columns_.taps.data();
+        using Lanes = float __attribute__((vector_size(16)));
+        const std::size_t most = static_cast<std::size_t>(width_) * static_cast<std::size_t>(st_.ku);
+        const std::size_t w3 = 3 * static_cast<std::size_t>(width_);
+        std::vector<float> line(one_ ? 0 : w3);
+        std::vector<int> texels(most);
+        std::vector<Lanes> values(most);
         for (int b = j0 * st_.kv; b < j1 * st_.kv; ++b) {
             const StratumRow sr = stratumRow(b);
-            columns_.texelsOfRow(sr.sn, sr.ct, n_, texels.data());
-            // The row interpolated to this stratum row's θ once, then read across.
-            const Rgb* pixels = one_ ? row_[static_cast<std::size_t>(b)] : nullptr;
-            const Rgb pixelLimit(one_ ? limit_[static_cast<std::size_t>(b)] : 0.0f);
-            if (!one_) {
+            const StrataColumns& columns = columns_;
+            const std::size_t count = columns.size();
+            const Source::Column* taps = columns.taps.data();
+            columns.texelsOfRow(sr.sn, sr.ct, n_, texels.data());
+            if (one_) {  // ku = 1: stratum a is pixel a
+                const float* px = &row_[static_cast<std::size_t>(b)]->x;
+                const float limit = limit_[static_cast<std::size_t>(b)];
+                for (std::size_t a = 0; a < count; ++a)
+                    values[a] = Lanes{std::min(px[3 * a], limit), std::min(px[3 * a + 1], limit), std::min(px[3 * a + 2], limit), 0.0f};
+            } else {
                 const Source::Row r = Source::rowAtV(sr.v, height_);
-                const Rgb* r0 = padded(r.p0);
-                const Rgb* r1 = padded(r.p1);
-                const Rgb l0(paddedLimit(r.p0)), l1(paddedLimit(r.p1));
-                for (int i = 0; i < width_; ++i)
-                    line[static_cast<std::size_t>(i)] = glm::min(r0[i], l0) * (1.0f - r.fy) + glm::min(r1[i], l1) * r.fy;
+                const float* r0 = &padded(r.p0)->x;
+                const float* r1 = &padded(r.p1)->x;
+                const float l0 = paddedLimit(r.p0), l1 = paddedLimit(r.p1), fy = r.fy, gy = 1.0f - r.fy;
+                float* out = line.data();
+#pragma omp simd
+                for (std::size_t k = 0; k < w3; ++k) out[k] = std::min(r0[k], l0) * gy + std::min(r1[k], l1) * fy;
+                for (std::size_t a = 0; a < count; ++a) {
+                    const Source::Column& c = taps[a];
+                    const float* p = out + 3 * static_cast<std::size_t>(c.i0);
+                    const float* q = out + 3 * static_cast<std::size_t>(c.i1);
+                    const float gx = 1.0f - c.fx;
+                    values[a] = Lanes{p[0] * gx + q[0] * c.fx, p[1] * gx + q[1] * c.fx, p[2] * gx + q[2] * c.fx, 0.0f};
+                }
             }
             // Neighbouring strata mostly share a texel: sum runs before touching the cube.
-            auto flush = [&](int run, const Rgb& runSum, int runCount) {
-                texel(run) += Rgb(sr.w * glm::dvec3(runSum));
+            auto flush = [&](int run, Lanes sum, int runCount) {
+                texel(run) += Rgb(sr.w * glm::dvec3(sum[0], sum[1], sum[2]));
                 weight_[static_cast<std::size_t>(run)] += static_cast<float>(sr.w * runCount);
             };
-            auto value = [&](std::size_t a) {
-                if (one_) return glm::min(pixels[columns_.pixel[a]], pixelLimit);
-                const Source::Column& c = taps[a];
-                return line[static_cast<std::size_t>(c.i0)] * (1.0f - c.fx) + line[static_cast<std::size_t>(c.i1)] * c.fx;
-            };
-            const std::size_t count = columns_.size();
             std::size_t start = 0;
-            Rgb runSum = value(0);
+            Lanes sum = values[0];
             for (std::size_t a = 1; a < count; ++a) {
                 if (texels[a] != texels[start]) {
-                    flush(texels[start], runSum, static_cast<int>(a - start));
+                    flush(texels[start], sum, static_cast<int>(a - start));
                     start = a;
-                    runSum = Rgb(0.0f);
+                    sum = values[a];
+                } else {
+                    sum += values[a];
                 }
-                runSum += value(a);
             }
-            flush(texels[start], runSum, static_cast<int>(count - start));
+            flush(texels[start], sum, static_cast<int>(count - start));
         }
     }
 
@@ -1050,7 +1072,6 @@ private:
     // interpolation reads its pixel, with that stratum's weight for it. In image order, on the
     // calling thread: they are few (at most 1/64 of the strips they came from).
     void correctCandidates(float limit) {
-        const int nu = static_cast<int>(columns_.size());
         for (const Strip& s : strips_) {
             if (s.deferred) continue;
             for (const Candidate& c : s.candidates) {
@@ -1062,6 +1083,8 @@ private:
                 const int b0 = std::max(0, (c.j - 1) * st_.kv), b1 = std::min(nv_, (c.j + 2) * st_.kv);
                 for (int b = b0; b < b1; ++b) {
                     const StratumRow sr = stratumRow(b);
+                    const StrataColumns& columns = columns_;
+                    const int ku = st_.ku, nu = static_cast<int>(columns.size());
                     float wy = 0.0f;
                     if (one_) {
                         wy = b == c.j ? 1.0f : 0.0f;
@@ -1070,17 +1093,17 @@ private:
                         wy = (r.p0 == p ? 1.0f - r.fy : 0.0f) + (r.p1 == p ? r.fy : 0.0f);
                     }
                     if (wy == 0.0f) continue;
-                    for (int a = (c.i - 1) * st_.ku; a < (c.i + 2) * st_.ku; ++a) {
+                    for (int a = (c.i - 1) * ku; a < (c.i + 2) * ku; ++a) {
                         const std::size_t col = static_cast<std::size_t>(((a % nu) + nu) % nu);
                         float wx = 0.0f;
                         if (one_) {
-                            wx = columns_.pixel[col] == c.i ? 1.0f : 0.0f;
+                            wx = columns.pixel[col] == c.i ? 1.0f : 0.0f;
                         } else {
-                            const Source::Column& t = columns_.taps[col];
+                            const Source::Column& t = columns.taps[col];
                             wx = (t.i0 == c.i ? 1.0f - t.fx : 0.0f) + (t.i1 == c.i ? t.fx : 0.0f);
                         }
                         if (wx == 0.0f) continue;
-                        texel(columns_.texelOf(col, sr.sn, sr.ct, n_)) += Rgb(sr.w * glm::dvec3(d * (wx * wy)));
+                        texel(columns.texelOf(col, sr.sn, sr.ct, n_)) += Rgb(sr.w * glm::dvec3(d * (wx * wy)));
                     }
                 }
             }
