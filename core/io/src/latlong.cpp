@@ -792,44 +792,31 @@ public:
                                         " out of order or of the wrong size");
         next_ = y1;
         for (int j = y0; j < y1; ++j) row_[static_cast<std::size_t>(j)] = rows.data() + static_cast<std::size_t>(j - y0) * width_;
-        bool defer = hasInfinity || y0 == 0 || y1 == height_;
-        float limit = std::numeric_limits<float>::infinity();
-        Strip strip{y0, y1, false, hasInfinity, limit, {}};
         if (!hasInfinity) {
             sumRows(y0, y1);
             for (int j = y0; j < y1; ++j) partial_ += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
             const glm::dvec3 mean = partial_ / weightSum_;
-            limit = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+            clamp_ = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
         }
-        if (!defer) {
-            strip.candidates = above(y0, y1, limit);
-            defer = strip.candidates.size() > static_cast<std::size_t>(y1 - y0) * width_ / 64;
-        }
-        strip.deferred = defer;
-        strip.limit = limit;
+        strips_.push_back({y0, y1, true, hasInfinity, std::numeric_limits<float>::infinity(), {}});
         ++stats_.strips;
-        stats_.deferred += defer ? 1 : 0;
-        stats_.candidates += defer ? 0 : strip.candidates.size();
-        if (defer) {
-            strip.candidates.clear();
+        // The last strip waits for the end whatever it holds: nothing is decoded after it.
+        if (hasInfinity || y1 == height_) {
+            ++stats_.deferred;
             for (int j = y0; j < y1; ++j) {
                 deferred_[static_cast<std::size_t>(j)] = 1;
                 keep(j);
             }
         } else {
-            for (int j = y0; j < y1; ++j) limit_[static_cast<std::size_t>(j)] = limit;
-            // Rows whose strata read only rows clamped now (j − 1 .. j + 1, poles excluded).
-            int lo = std::max(1, y0 - 1);
-            while (lo < y1 - 1 && !ready(lo)) ++lo;
-            static const Progress silent;  // in the background: only the caller's thread reports
-            if (lo < y1 - 1) scatterRows(lo, y1 - 1, {silent, 0.0f, 1.0f}, 1);
-            // The rows that rows left for the end may read.
-            for (int j : {y0, y0 + 1, y1 - 2, y1 - 1})
-                if (j >= y0 && j < y1) keep(j);
+            clampOrDefer(strips_.back(), false);
         }
-        for (int j = y0; j < y1; ++j)
+        // A strip deferred earlier is looked at again with the clamp as it is now (near the top
+        // pole the first strips' sums are small, so they wait for a few more).
+        for (Strip& s : strips_)
+            if (s.deferred && !s.infinity && s.y1 <= y0) clampOrDefer(s, true);
+        scatterReady();
+        for (int j = 0; j < y1; ++j)
             if (kept_[static_cast<std::size_t>(j)].empty()) row_[static_cast<std::size_t>(j)] = nullptr;
-        strips_.push_back(std::move(strip));
     }
 
     // After the last strip: T, the deferred rows, the candidates' differences, the normalising
@@ -850,8 +837,8 @@ public:
         for (const Strip& s : strips_)
             if (s.deferred)
                 for (int j = s.y0; j < s.y1; ++j) limit_[static_cast<std::size_t>(j)] = limit;
-        poleTop_ = poleRow(0);
-        poleBottom_ = poleRow(height_ - 1);
+        poleTop_ = poleRow(0, limit);
+        poleBottom_ = poleRow(height_ - 1, limit);
         progress.report(0.1);
         // The rows not scattered yet, in runs, in row order.
         for (int j = 0; j < height_;) {
@@ -890,6 +877,63 @@ private:
         std::vector<Candidate> candidates;  // immediate strips: pixels above T_k, in image order
     };
 
+    // Clamps strip s to the present lower bound of T (clamp_), keeping its pixels above it as
+    // candidates, unless more than 1/64 of them are: then it is deferred (kept whole) or stays so.
+    void clampOrDefer(Strip& s, bool wasDeferred) {
+        if (countAbove(s.y0, s.y1, clamp_) > static_cast<std::size_t>(s.y1 - s.y0) * width_ / 64) {
+            if (!wasDeferred) {
+                ++stats_.deferred;
+                for (int j = s.y0; j < s.y1; ++j) {
+                    deferred_[static_cast<std::size_t>(j)] = 1;
+                    keep(j);
+                }
+            }
+            return;
+        }
+        if (wasDeferred) {
+            --stats_.deferred;
+            ++stats_.promoted;
+        }
+        s.deferred = false;
+        s.limit = clamp_;
+        s.candidates = above(s.y0, s.y1, clamp_);
+        stats_.candidates += s.candidates.size();
+        for (int j = s.y0; j < s.y1; ++j) {
+            limit_[static_cast<std::size_t>(j)] = clamp_;
+            deferred_[static_cast<std::size_t>(j)] = 0;
+        }
+    }
+
+    // Scatters every row not done whose strata read only rows clamped already (j − 1 .. j + 1;
+    // rows 0 and height − 1, which read a pole, wait for the end), in runs, in row order; then
+    // keeps of the clamped strips only the two rows at each end, which rows left may read.
+    void scatterReady() {
+        static const Progress silent;  // in the background: only the caller's thread reports
+        for (int j = 1; j < next_ - 1;) {
+            if (done_[static_cast<std::size_t>(j)] || !ready(j)) {
+                ++j;
+                continue;
+            }
+            int end = j;
+            while (end < next_ - 1 && !done_[static_cast<std::size_t>(end)] && ready(end)) ++end;
+            scatterRows(j, end, {silent, 0.0f, 1.0f}, 1);
+            j = end;
+        }
+        for (const Strip& s : strips_) {
+            if (s.deferred) continue;
+            for (int j = s.y0 + 2; j < s.y1 - 2; ++j) {
+                auto& k = kept_[static_cast<std::size_t>(j)];
+                if (!k.empty() && done_[static_cast<std::size_t>(j - 1)] && done_[static_cast<std::size_t>(j)] &&
+                    done_[static_cast<std::size_t>(j + 1)]) {
+                    std::vector<Rgb>().swap(k);
+                    row_[static_cast<std::size_t>(j)] = nullptr;
+                }
+            }
+            for (int j : {s.y0, s.y0 + 1, s.y1 - 2, s.y1 - 1})
+                if (j >= s.y0 && j < s.y1 && row_[static_cast<std::size_t>(j)]) keep(j);
+        }
+    }
+
     bool ready(int j) const {
         for (int r = j - 1; r <= j + 1; ++r)
             if (r < 0 || r >= next_ || deferred_[static_cast<std::size_t>(r)] || !row_[static_cast<std::size_t>(r)])
@@ -909,6 +953,20 @@ private:
             for (int i = 0; i < width_; ++i) sum += glm::dvec3(r[i]);
             rowSum_[static_cast<std::size_t>(j)] = sum;
         });
+    }
+
+    // How many pixels of rows [y0, y1) have their brightest channel above `limit` (branch-free).
+    std::size_t countAbove(int y0, int y1, float limit) const {
+        std::vector<std::size_t> counts(static_cast<std::size_t>(y1 - y0), 0);
+        parallelFor(y0, y1, [&](int j) {
+            const Rgb* r = row_[static_cast<std::size_t>(j)];
+            std::size_t n = 0;
+            for (int i = 0; i < width_; ++i) n += peakOf(r[i]) > limit ? 1u : 0u;
+            counts[static_cast<std::size_t>(j - y0)] = n;
+        });
+        std::size_t total = 0;
+        for (std::size_t n : counts) total += n;
+        return total;
     }
 
     // The pixels of rows [y0, y1) whose brightest channel exceeds `limit`, in image order.
@@ -967,10 +1025,11 @@ private:
         return out;
     }
 
-    // A pole's value: the mean of the clamped row next to it, the same in every column.
-    std::vector<Rgb> poleRow(int j) const {
+    // A pole's value: the mean of the row next to it clamped to T, the same in every column (the
+    // row itself may be clamped lower: its candidates' differences are corrected like any other).
+    std::vector<Rgb> poleRow(int j, float clamp) const {
         const Rgb* r = row_[static_cast<std::size_t>(j)];
-        const Rgb limit(limit_[static_cast<std::size_t>(j)]);
+        const Rgb limit(clamp);
         glm::dvec3 sum(0.0);
         for (int i = 0; i < width_; ++i) sum += glm::dvec3(glm::min(r[i], limit));
         return std::vector<Rgb>(static_cast<std::size_t>(width_), Rgb(sum / static_cast<double>(width_)));
@@ -1009,63 +1068,125 @@ private:
         forBandsInTwoPhases(j0, j1, rowsPerBand_, [&](int b0, int b1) { band(b0, b1); }, progress, groups);
         for (int j = j0; j < j1; ++j) done_[static_cast<std::size_t>(j)] = 1;
     }
-    // Per stratum row: the texels (texelsOfRow, vectorised), the stratum values into a padded
-    // four-float array (the row interpolated to the stratum row's θ once, vectorised, then read
-    // across at each stratum's u), and the runs of strata that share a texel summed with one
-    // vector add per stratum before the cube is touched. The arithmetic per channel is that of a
-    // plain loop, so the cube is the same to the bit.
+    // The strata of image rows [j0, j1), a stratum row at a time, or two at a time when there are
+    // several per image row (kv ≥ 2): the two rows' texels (texelsOfRow, vectorised) agree for
+    // almost every column (a texel spans several stratum rows), so their values, each weighted
+    // by its row's solid angle, are summed in one pass of runs wherever they agree, and added
+    // one by one where they do not. Stratum values go into a padded four-float array (the
+    // image rows interpolated to the stratum row's θ once, vectorised, then read across at each
+    // stratum's u), so a run costs one vector add per stratum before the cube is touched.
     void band(int j0, int j1) {
-        using Lanes = float __attribute__((vector_size(16)));
-        const std::size_t most = static_cast<std::size_t>(width_) * static_cast<std::size_t>(st_.ku);
-        const std::size_t w3 = 3 * static_cast<std::size_t>(width_);
-        std::vector<float> line(one_ ? 0 : w3);
-        std::vector<int> texels(most);
-        std::vector<Lanes> values(most);
-        for (int b = j0 * st_.kv; b < j1 * st_.kv; ++b) {
-            const StratumRow sr = stratumRow(b);
-            const StrataColumns& columns = columns_;
-            const std::size_t count = columns.size();
-            const Source::Column* taps = columns.taps.data();
-            columns.texelsOfRow(sr.sn, sr.ct, n_, texels.data());
-            if (one_) {  // ku = 1: stratum a is pixel a
-                const float* px = &row_[static_cast<std::size_t>(b)]->x;
-                const float limit = limit_[static_cast<std::size_t>(b)];
-                for (std::size_t a = 0; a < count; ++a)
-                    values[a] = Lanes{std::min(px[3 * a], limit), std::min(px[3 * a + 1], limit), std::min(px[3 * a + 2], limit), 0.0f};
+        const std::size_t count = columns_.size(), w3 = 3 * static_cast<std::size_t>(width_);
+        Scratch scratch{std::vector<float>(one_ ? 0 : w3), std::vector<float>(one_ ? 0 : w3), {},
+                        std::vector<int>(count), std::vector<int>(count), std::vector<Lanes>(count)};
+        for (int b = j0 * st_.kv; b < j1 * st_.kv;) {
+            if (!one_ && b + 1 < j1 * st_.kv) {
+                stratumRows(b, b + 1, scratch);
+                b += 2;
             } else {
-                const Source::Row r = Source::rowAtV(sr.v, height_);
-                const float* r0 = &padded(r.p0)->x;
-                const float* r1 = &padded(r.p1)->x;
-                const float l0 = paddedLimit(r.p0), l1 = paddedLimit(r.p1), fy = r.fy, gy = 1.0f - r.fy;
-                float* out = line.data();
-#pragma omp simd
-                for (std::size_t k = 0; k < w3; ++k) out[k] = std::min(r0[k], l0) * gy + std::min(r1[k], l1) * fy;
-                for (std::size_t a = 0; a < count; ++a) {
-                    const Source::Column& c = taps[a];
-                    const float* p = out + 3 * static_cast<std::size_t>(c.i0);
-                    const float* q = out + 3 * static_cast<std::size_t>(c.i1);
-                    const float gx = 1.0f - c.fx;
-                    values[a] = Lanes{p[0] * gx + q[0] * c.fx, p[1] * gx + q[1] * c.fx, p[2] * gx + q[2] * c.fx, 0.0f};
-                }
+                stratumRows(b, -1, scratch);
+                b += 1;
             }
-            // Neighbouring strata mostly share a texel: sum runs before touching the cube.
-            auto flush = [&](int run, Lanes sum, int runCount) {
-                texel(run) += Rgb(sr.w * glm::dvec3(sum[0], sum[1], sum[2]));
-                weight_[static_cast<std::size_t>(run)] += static_cast<float>(sr.w * runCount);
-            };
-            std::size_t start = 0;
-            Lanes sum = values[0];
-            for (std::size_t a = 1; a < count; ++a) {
-                if (texels[a] != texels[start]) {
-                    flush(texels[start], sum, static_cast<int>(a - start));
-                    start = a;
-                    sum = values[a];
-                } else {
-                    sum += values[a];
-                }
-            }
-            flush(texels[start], sum, static_cast<int>(count - start));
         }
+    }
+
+    using Lanes = float __attribute__((vector_size(16)));
+    struct Scratch {
+        std::vector<float> line0, line1;  // the interpolated rows, weighted (3 floats a pixel)
+        std::vector<float> both;          // their sum
+        std::vector<int> texels0, texels1;
+        std::vector<Lanes> values;
+    };
+
+    // Stratum row b's values into `line`, each times its row's weight w (not one_).
+    void weightedLine(const StratumRow& sr, float* line) const {
+        const Source::Row r = Source::rowAtV(sr.v, height_);
+        const float* r0 = &padded(r.p0)->x;
+        const float* r1 = &padded(r.p1)->x;
+        const float l0 = paddedLimit(r.p0), l1 = paddedLimit(r.p1);
+        const float w = static_cast<float>(sr.w), fy = r.fy * w, gy = (1.0f - r.fy) * w;
+        const std::size_t w3 = 3 * static_cast<std::size_t>(width_);
+#pragma omp simd
+        for (std::size_t k = 0; k < w3; ++k) line[k] = std::min(r0[k], l0) * gy + std::min(r1[k], l1) * fy;
+    }
+    static Lanes at(const float* line, const Source::Column& c) {
+        const float* p = line + 3 * static_cast<std::size_t>(c.i0);
+        const float* q = line + 3 * static_cast<std::size_t>(c.i1);
+        const float gx = 1.0f - c.fx;
+        return Lanes{p[0] * gx + q[0] * c.fx, p[1] * gx + q[1] * c.fx, p[2] * gx + q[2] * c.fx, 0.0f};
+    }
+
+    // Stratum row b0, with b1 (≥ 0) beside it.
+    void stratumRows(int b0, int b1, Scratch& s) {
+        const std::size_t count = columns_.size();
+        const StratumRow sr0 = stratumRow(b0), sr1 = stratumRow(b1 >= 0 ? b1 : b0);
+        const double w = b1 >= 0 ? sr0.w + sr1.w : sr0.w;  // a column of strata where both agree
+        columns_.texelsOfRow(sr0.sn, sr0.ct, n_, s.texels0.data());
+        if (b1 >= 0) columns_.texelsOfRow(sr1.sn, sr1.ct, n_, s.texels1.data());
+        const int* t0 = s.texels0.data();
+        const int* t1 = b1 >= 0 ? s.texels1.data() : t0;
+        const Source::Column* taps = columns_.taps.data();
+        if (one_) {  // ku = kv = 1: stratum a is pixel a, weighted here
+            const float* px = &row_[static_cast<std::size_t>(b0)]->x;
+            const float limit = limit_[static_cast<std::size_t>(b0)], wf = static_cast<float>(sr0.w);
+            for (std::size_t a = 0; a < count; ++a)
+                s.values[a] = Lanes{std::min(px[3 * a], limit) * wf, std::min(px[3 * a + 1], limit) * wf,
+                                    std::min(px[3 * a + 2], limit) * wf, 0.0f};
+        } else {
+            weightedLine(sr0, s.line0.data());
+            if (b1 >= 0) {
+                weightedLine(sr1, s.line1.data());
+                float* l0 = s.line0.data();
+                const float* l1 = s.line1.data();
+                const std::size_t w3 = 3 * static_cast<std::size_t>(width_);
+                // line0 + line1, the sum where the two rows agree; line1 keeps row b1's own.
+                std::vector<float>& both = s.both;
+                both.resize(w3);
+                float* sum = both.data();
+#pragma omp simd
+                for (std::size_t k = 0; k < w3; ++k) sum[k] = l0[k] + l1[k];
+                for (std::size_t a = 0; a < count; ++a) s.values[a] = at(sum, taps[a]);
+            } else {
+                for (std::size_t a = 0; a < count; ++a) s.values[a] = at(s.line0.data(), taps[a]);
+            }
+        }
+        // Neighbouring strata mostly share a texel: values are summed in runs before the cube is
+        // touched. Three runs stay open: columns where both rows' strata share a texel, and each
+        // row's own where they do not (near a pole the two rows' texels differ often, and one
+        // flush per stratum there put the pole texels' single-precision sums 3e-5 off).
+        struct Run {
+            int texel = -1;
+            Lanes sum{};
+            std::size_t count = 0;
+        };
+        auto flush = [&](Run& r, double weight) {
+            if (r.count == 0) return;
+            texel(r.texel) += Rgb(glm::dvec3(r.sum[0], r.sum[1], r.sum[2]));
+            weight_[static_cast<std::size_t>(r.texel)] += static_cast<float>(weight * static_cast<double>(r.count));
+            r.count = 0;
+        };
+        auto add = [&](Run& r, int t, Lanes v, double weight) {
+            if (t != r.texel) {
+                flush(r, weight);
+                r.texel = t;
+                r.sum = v;
+            } else {
+                r.sum += v;
+            }
+            ++r.count;
+        };
+        Run both, only0, only1;
+        for (std::size_t a = 0; a < count; ++a) {
+            if (t0[a] == t1[a]) {
+                add(both, t0[a], s.values[a], w);
+            } else {
+                add(only0, t0[a], at(s.line0.data(), taps[a]), sr0.w);
+                add(only1, t1[a], at(s.line1.data(), taps[a]), sr1.w);
+            }
+        }
+        flush(both, w);
+        flush(only0, sr0.w);
+        flush(only1, sr1.w);
     }
 
     // Each candidate's D = min(L, T) − min(L, T_k), added through every stratum whose
@@ -1136,6 +1257,7 @@ private:
     std::vector<double> rowWeight_;   // cos θ_j − cos θ_{j+1}
     double weightSum_ = 0.0;          // Σ rowWeight·width, the image's weight
     glm::dvec3 partial_{0.0};         // Σ rowWeight·rowSum over the finite rows so far
+    float clamp_ = 0.0f;              // 16 × partial_'s brightest channel / weightSum_: T's lower bound
     std::vector<float> limit_;        // each row's clamp: T_k, or T for deferred rows once known
     std::vector<const Rgb*> row_;     // the rows readable now
     std::vector<std::vector<Rgb>> kept_;

@@ -39,6 +39,7 @@ public:
     // What took which path, for tests and benchmarks.
     struct Stats {
         int strips = 0, deferred = 0;  // strips taken, and kept whole for the end
+        int promoted = 0;              // strips deferred when they came, clamped after a later one
         std::size_t candidates = 0;    // pixels of the other strips above their clamp T_k
         std::size_t corrected = 0;     // of those, the ones whose D = min(L, T) − min(L, T_k) was not 0
         std::size_t excess = 0;        // pixels above T, splatted
