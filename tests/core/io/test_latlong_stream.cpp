@@ -21,6 +21,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -148,18 +151,25 @@ TEST(LatLongStream, RefusesStripsOutOfOrderAndAnUnfinishedImage) {
 // The previewer and bake read a file this way: decoded strip by strip, each converted in the
 // background while the next is read. The cube is the one the same image in memory gives, to the
 // bit (the same strips), and cancelling mid-decode stops it cleanly.
+namespace {
+// The sky as a half-float zip OpenEXR, by scanlines or in tiles of `tile`.
+void writeSky(const std::filesystem::path& file, int tile = 0) {
+    const std::vector<Rgb> px = sky();
+    OIIO::ImageSpec spec(kW, kH, 3, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", "zip");
+    if (tile > 0) spec.tile_width = spec.tile_height = tile;
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out && out->open(file.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+    ASSERT_TRUE(out->close());
+}
+}  // namespace
+
 TEST(LatLongStream, AStreamedFileGivesTheCubeOfTheImageInMemoryToTheBit) {
     const test::TempDir dir;
-    const auto file = dir.path() / "sky.exr";
-    {
-        const std::vector<Rgb> px = sky();
-        OIIO::ImageSpec spec(kW, kH, 3, OIIO::TypeDesc::HALF);
-        spec.attribute("compression", "zip");
-        auto out = OIIO::ImageOutput::create(file.string());
-        ASSERT_TRUE(out && out->open(file.string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-        ASSERT_TRUE(out->close());
-    }
+    const auto file = dir.path() / "sky.exr", tiled = dir.path() / "tiled.exr";
+    writeSky(file);
+    writeSky(tiled, 64);
     ImportOptions options;
     options.faceSize = 64;
     const ImportedEnvironment env = loadEnvironment(file, options);
@@ -172,10 +182,32 @@ TEST(LatLongStream, AStreamedFileGivesTheCubeOfTheImageInMemoryToTheBit) {
         for (int y = -1; y <= 64; ++y)
             for (int x = -1; x <= 64; ++x) differ += env.cube.at(f, x, y) == want.at(f, x, y) ? 0 : 1;
     EXPECT_EQ(differ, 0u);
+    // Tiles of 64 are read four rows of tiles at a time: the same strips.
+    EXPECT_EQ(loadEnvironment(tiled, options).cube.weightedMean(), env.cube.weightedMean());
 
     int reports = 0;
     const Progress cancelAfterTwoStrips = [&](const std::string&, float) { return ++reports < 3; };
     EXPECT_THROW(loadEnvironment(file, options, cancelAfterTwoStrips), Cancelled);
     EXPECT_EQ(reports, 3);
     EXPECT_EQ(loadEnvironment(file, options).cube.weightedMean(), env.cube.weightedMean()) << "works again after a cancel";
+}
+
+TEST(LatLongStream, AFileCutShortMidStreamIsRefusedNamingItAndTheNextImportWorks) {
+    const test::TempDir dir;
+    const auto file = dir.path() / "sky.exr", cut = dir.path() / "cut.exr";
+    writeSky(file);
+    {
+        std::ifstream in(file, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() * 3 / 5);  // in the third strip
+    }
+    ImportOptions options;
+    options.faceSize = 64;
+    try {
+        loadEnvironment(cut, options);
+        FAIL() << "a file cut short was imported";
+    } catch (const EnvError& e) {
+        EXPECT_NE(std::string(e.what()).find(cut.string()), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(loadEnvironment(file, options).cube.size(), 64);
 }
