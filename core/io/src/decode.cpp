@@ -421,9 +421,20 @@ Image readImageFile(const fs::path& file, ImportReport& report, const Progress& 
     if (ec) throw EnvError(file, "cannot read the file: " + ec.message());
     if (bytes == 0) throw EnvError(file, "file is empty (0 bytes)");
     {
+        // The header is read a byte at a time: from the file's first 64 KiB held in memory (a
+        // seek per byte on the stream cost 300 seeks and 8 KiB reads, 10–20 ms, on an 8k map),
+        // and from the stream beyond them.
         std::ifstream in(file, std::ios::binary);
+        std::vector<unsigned char> head(static_cast<std::size_t>(std::min<std::uintmax_t>(bytes, 65536)));
+        if (!in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size())))
+            throw EnvError(file, "cannot read the file");
         checkExrHeader(
             [&](std::uint64_t pos, std::size_t n, unsigned char* out) {
+                if (pos + n <= head.size()) {
+                    std::copy_n(head.begin() + static_cast<std::ptrdiff_t>(pos), n, out);
+                    return true;
+                }
+                in.clear();
                 in.seekg(static_cast<std::streamoff>(pos));
                 return static_cast<bool>(in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n)));
             },
