@@ -51,7 +51,7 @@ using ChooseStrips = std::function<StripConsumer(int width, int height)>;
 
 // Decodes and sanitises an image file, recording it in the report. Throws EnvError, also when the
 // header asks for more memory than the machine can spare (checked before allocating). Decodes by
-// strips of rows straight into the float RGB pixels (one copy of the image, plus one strip),
+// strips of rows into the float RGB pixels (one copy of the image, plus one strip),
 // reporting stage "import" from p0 to p1 after each strip; throws Cancelled when told to stop.
 Image readImageFile(const std::filesystem::path& file, ImportReport& report, const Progress& progress = {},
                     float p0 = 0.0f, float p1 = 0.0f);

@@ -117,7 +117,8 @@ ImportedEnvironment loadEnvironmentFromMemory(std::span<const unsigned char> byt
 // A decoded, sanitised image: linear float RGB, row 0 at the top. What the import reads from a
 // single image file before it converts it (decoded by strips, one copy of the image in memory; a
 // header asking for more than three quarters of the machine's memory is refused before anything
-// is allocated).
+// is allocated). A lat-long that the scatter converts is never decoded whole by loadEnvironment:
+// each strip is converted as it is decoded (docs/big-environments.md).
 struct DecodedImage {
     int width = 0;
     int height = 0;
