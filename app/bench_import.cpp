@@ -22,6 +22,9 @@
 #include <string>
 #include <thread>
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <vector>
 
 namespace mipgloss::app {
@@ -79,13 +82,18 @@ std::vector<int> parseSizes(const std::string& flag, const std::string& text, in
 }
 
 // Peak resident memory: Linux keeps the high-water mark (VmHWM) per process; writing 5 to
-// clear_refs resets it to the current resident size, so each stage gets its own peak.
+// clear_refs resets it to the current resident size, so each stage gets its own peak. What the
+// allocator kept from earlier stages is given back first (malloc_trim): a stage that reused it
+// showed as adding nothing (the 8k bake after the 2k ones: 0 MiB).
 void resetPeakMemory() {
+#ifdef __GLIBC__
+    ::malloc_trim(0);
+#endif
     std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 // What a stage added at its peak: the high-water mark over the resident size when it was reset.
-// (The process already holds what earlier stages left in the allocator, which is not the stage's.)
+// (The process still holds what earlier stages left mapped, which is not the stage's.)
 double peakMemoryMiB(double residentAtReset) { return processStatusMiB("VmHWM") - residentAtReset; }
 
 // The source read bilinearly at (u, v) in [0, 1]², wrapping in u, clamped in v.
