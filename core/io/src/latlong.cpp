@@ -759,8 +759,10 @@ void splatExcess(const std::vector<ExcessPixel>& pixels, int width, int height, 
 // if T had been known from the start; only rounding differs. Nothing is subtracted, so a sun far
 // above T_k costs no precision. A strip with more than 1/64 of its pixels above T_k (near the top
 // pole the sums are still small), a strip holding +Inf (replaced by the image's largest finite
-// value only at the end), and the first and last strips (their rows make the pole values, means
-// of the clamped first and last rows) are deferred: kept whole and scattered at the end with T.
+// value only at the end) and the last strip are deferred: kept whole. A deferred finite strip is
+// looked at again after every later one and clamped as soon as few enough of its pixels exceed
+// the grown bound; what is still deferred at the end is scattered with T. The pole values (the
+// means of the first and last rows clamped to T) and the two rows that read them wait for the end.
 // What is held besides the cube: the deferred strips, two rows at each end of the other strips,
 // the candidates (at most 1/64 of those strips) and per-row sums.
 //
