@@ -142,8 +142,13 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
             stream->addStrip(y0, y1, rows, hasInfinity);
         };
     };
+    // The decode's share of the bar is known only once the header has chosen: streamed, the
+    // decode carries the conversion (to 0.8); whole, the conversion comes after it (from 0.3).
+    const Progress decodeProgress = [&](const std::string& stage, float f) {
+        return !progress || progress(stage, f * (stream ? 0.8f : 0.3f));
+    };
     float maxFinite = 0.0f;
-    const Image img = readImageFile(path, report, progress, 0.0f, stream ? 0.8f : 0.3f, choose, &maxFinite);
+    const Image img = readImageFile(path, report, decodeProgress, 0.0f, 1.0f, choose, &maxFinite);
     if (stream) {
         report.layout = EnvLayout::LatLong;
         CubeMap cube = stream->finish(maxFinite, progress, 0.8f, 0.95f);

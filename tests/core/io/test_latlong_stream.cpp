@@ -185,6 +185,19 @@ TEST(LatLongStream, AStreamedFileGivesTheCubeOfTheImageInMemoryToTheBit) {
     // Tiles of 64 are read four rows of tiles at a time: the same strips.
     EXPECT_EQ(loadEnvironment(tiled, options).cube.weightedMean(), env.cube.weightedMean());
 
+    // The bar rises through the decode, which carries the conversion, with no jump.
+    std::vector<float> fractions;
+    loadEnvironment(file, options, [&](const std::string&, float f) {
+        fractions.push_back(f);
+        return true;
+    });
+    ASSERT_GE(fractions.size(), 6u);
+    for (std::size_t k = 1; k < fractions.size(); ++k) {
+        EXPECT_GE(fractions[k], fractions[k - 1]) << "report " << k;
+        EXPECT_LE(fractions[k] - fractions[k - 1], 0.25f) << "report " << k << ": from " << fractions[k - 1];
+    }
+    EXPECT_EQ(fractions.back(), 1.0f);
+
     int reports = 0;
     const Progress cancelAfterTwoStrips = [&](const std::string&, float) { return ++reports < 3; };
     EXPECT_THROW(loadEnvironment(file, options, cancelAfterTwoStrips), Cancelled);
