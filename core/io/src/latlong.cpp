@@ -102,6 +102,32 @@ struct BrightSplit {
     std::vector<ExcessPixel> excess;                    // in image order (rows, then columns)
 };
 
+// T from the image's weighted mean: 16 × its brightest channel (the stream's lower bounds T_k
+// use the same rule on partial sums).
+float thresholdOfMean(const glm::dvec3& mean) { return static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z})); }
+
+// How many of `pixels` may exceed T: 2 % of them; 0 where no cap applies.
+std::size_t brightCap(std::size_t pixels) {
+    const std::size_t cap = pixels / 50;
+    return cap < pixels ? cap : 0;
+}
+
+// T raised to the cap-th largest peak when at least cap of `peaks` (every peak above T) are.
+float raisedToCap(float threshold, std::vector<float> peaks, std::size_t cap) {
+    if (cap == 0 || peaks.size() < cap) return threshold;
+    // The cap-th largest of all peaks is the (count − cap)-th smallest of those above.
+    const auto nth = peaks.begin() + static_cast<std::ptrdiff_t>(peaks.size() - cap);
+    std::nth_element(peaks.begin(), nth, peaks.end());
+    return std::max(threshold, *nth);
+}
+
+// A pole's value: the mean of the row next to it clamped to `limit`, the same in every column.
+std::vector<Rgb> poleValues(const Rgb* row, int width, const Rgb& limit) {
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < width; ++i) sum += glm::dvec3(glm::min(row[i], limit));
+    return std::vector<Rgb>(static_cast<std::size_t>(width), Rgb(sum / static_cast<double>(width)));
+}
+
 BrightSplit splitBright(const LatLongView& img) {
     const int w = img.width, h = img.height;
     const int blocks = std::min(h, 64);
@@ -126,13 +152,11 @@ BrightSplit splitBright(const LatLongView& img) {
         sum += sums[static_cast<std::size_t>(k)];
         wsum += weights[static_cast<std::size_t>(k)];
     }
-    const glm::dvec3 mean = sum / wsum;
-    float threshold = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+    float threshold = thresholdOfMean(sum / wsum);
 
     // Raised to the cap-th largest peak when more than cap pixels exceed it. Only the pixels above
     // 16 × the mean are collected for the selection, which is usually none.
-    const std::size_t size = img.pixels.size(), cap = size / 50;
-    if (cap > 0 && cap < size) {
+    if (const std::size_t cap = brightCap(img.pixels.size()); cap > 0) {
         std::vector<std::vector<float>> above(static_cast<std::size_t>(blocks));
         parallelFor(0, blocks, [&](int k) {
             const auto [j0, j1] = rowsOf(k);
@@ -141,12 +165,7 @@ BrightSplit splitBright(const LatLongView& img) {
         });
         std::vector<float> peaks;
         for (const auto& part : above) peaks.insert(peaks.end(), part.begin(), part.end());
-        if (peaks.size() >= cap) {
-            // The cap-th largest of all peaks is the (count − cap)-th smallest of those above.
-            const auto nth = peaks.begin() + static_cast<std::ptrdiff_t>(peaks.size() - cap);
-            std::nth_element(peaks.begin(), nth, peaks.end());
-            threshold = std::max(threshold, *nth);
-        }
+        threshold = raisedToCap(threshold, std::move(peaks), cap);
     }
     BrightSplit out;
     if (!(threshold > 0.0f)) return out;
@@ -192,15 +211,9 @@ public:
     struct Column { int i0, i1; float fx; };
     struct Row { int p0, p1; float fy; };  // rows of the padded image: 0 and H + 1 are the poles
 
-    Source(const LatLongView& img, Rgb limit) : width(img.width), height(img.height), px_(img.pixels.data()), limit_(limit) {
-        glm::dvec3 top(0.0), bottom(0.0);
-        for (int i = 0; i < width; ++i) {
-            top += glm::dvec3(tap(px_, i));
-            bottom += glm::dvec3(tap(px_ + pixelIndex(0, height - 1, width), i));
-        }
-        top_.assign(static_cast<std::size_t>(width), Rgb(top / static_cast<double>(width)));
-        bottom_.assign(static_cast<std::size_t>(width), Rgb(bottom / static_cast<double>(width)));
-    }
+    Source(const LatLongView& img, Rgb limit)
+        : width(img.width), height(img.height), px_(img.pixels.data()), limit_(limit),
+          top_(poleValues(px_, width, limit)), bottom_(poleValues(px_ + pixelIndex(0, height - 1, width), width, limit)) {}
 
     const int width, height;
 
@@ -361,12 +374,8 @@ struct StrataColumns {
 
     std::size_t size() const { return taps.size(); }
 
-    // Index (face·n + y)·n + x of the texel holding each stratum of the row (sin θ, cos θ), into
-    // `out` (size() entries). A texel index q·n is clamped to [0, n − 1] in float before it is
-    // truncated, which is floor for q·n ≥ 0, as clamp(int(q·n)) was. |tan θ| is only used where
-    // the pole's face wins (|cos θ| ≥ sin θ·|ma| ≥ sin θ/√2, so |tan θ| ≤ √2) and cot θ only where
-    // a side face wins (|cot θ| < 1): both are capped at 2, which keeps the unused lane finite.
-    // The row's constants for texelOf: |cos θ|, capped cot θ and |tan θ|, and the pole face.
+    // A stratum row's constants for texelIndex: sin θ, |cos θ|, capped cot θ and |tan θ|, and
+    // the pole's face.
     struct RowGeometry {
         float sn, polar, cot, tanAbs;
         std::size_t k;  // 0: +Y (cos θ > 0), 1: −Y
@@ -797,8 +806,7 @@ public:
         if (!hasInfinity) {
             sumRows(y0, y1);
             for (int j = y0; j < y1; ++j) partial_ += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
-            const glm::dvec3 mean = partial_ / weightSum_;
-            clamp_ = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
+            clamp_ = thresholdOfMean(partial_ / weightSum_);
         }
         strips_.push_back({y0, y1, true, hasInfinity, std::numeric_limits<float>::infinity(), {}});
         ++stats_.strips;
@@ -828,10 +836,7 @@ public:
                                                           std::to_string(height_) + " rows");
         for (const Strip& s : strips_) {
             if (!s.infinity) continue;
-            for (int j = s.y0; j < s.y1; ++j)
-                for (Rgb& p : kept_[static_cast<std::size_t>(j)])
-                    for (int c = 0; c < 3; ++c)
-                        if (std::isinf(p[c])) p[c] = maxFinite;
+            for (int j = s.y0; j < s.y1; ++j) io_detail::replaceInfinities(kept_[static_cast<std::size_t>(j)], maxFinite);
             sumRows(s.y0, s.y1);
         }
         const float threshold = finalThreshold();
@@ -839,8 +844,10 @@ public:
         for (const Strip& s : strips_)
             if (s.deferred)
                 for (int j = s.y0; j < s.y1; ++j) limit_[static_cast<std::size_t>(j)] = limit;
-        poleTop_ = poleRow(0, limit);
-        poleBottom_ = poleRow(height_ - 1, limit);
+        // The poles: the first and last rows clamped to T (the rows themselves may be clamped
+        // lower; their candidates' differences are corrected like any other).
+        poleTop_ = poleValues(row_.front(), width_, Rgb(limit));
+        poleBottom_ = poleValues(row_.back(), width_, Rgb(limit));
         progress.report(0.1);
         // The rows not scattered yet, in runs, in row order.
         for (int j = 0; j < height_;) {
@@ -991,19 +998,12 @@ private:
     float finalThreshold() const {
         glm::dvec3 sum(0.0);
         for (int j = 0; j < height_; ++j) sum += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
-        const glm::dvec3 mean = sum / weightSum_;
-        float threshold = static_cast<float>(16.0 * std::max({mean.x, mean.y, mean.z}));
-        const std::size_t size = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), cap = size / 50;
-        if (cap > 0 && cap < size) {
-            std::vector<float> peaks;
-            forEachBright(threshold, [&](int, int, const Rgb& p) { peaks.push_back(peakOf(p)); });
-            if (peaks.size() >= cap) {
-                const auto nth = peaks.begin() + static_cast<std::ptrdiff_t>(peaks.size() - cap);
-                std::nth_element(peaks.begin(), nth, peaks.end());
-                threshold = std::max(threshold, *nth);
-            }
-        }
-        return threshold;
+        const float threshold = thresholdOfMean(sum / weightSum_);
+        const std::size_t cap = brightCap(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+        if (cap == 0) return threshold;
+        std::vector<float> peaks;
+        forEachBright(threshold, [&](int, int, const Rgb& p) { peaks.push_back(peakOf(p)); });
+        return raisedToCap(threshold, std::move(peaks), cap);
     }
     // Calls f(i, j, value) for every pixel whose peak exceeds `threshold` (at least every T_k), in
     // image order.
@@ -1027,15 +1027,6 @@ private:
         return out;
     }
 
-    // A pole's value: the mean of the row next to it clamped to T, the same in every column (the
-    // row itself may be clamped lower: its candidates' differences are corrected like any other).
-    std::vector<Rgb> poleRow(int j, float clamp) const {
-        const Rgb* r = row_[static_cast<std::size_t>(j)];
-        const Rgb limit(clamp);
-        glm::dvec3 sum(0.0);
-        for (int i = 0; i < width_; ++i) sum += glm::dvec3(glm::min(r[i], limit));
-        return std::vector<Rgb>(static_cast<std::size_t>(width_), Rgb(sum / static_cast<double>(width_)));
-    }
     // Padded row p (0: the top pole, height + 1: the bottom pole) and its clamp.
     const Rgb* padded(int p) const {
         if (p == 0) return poleTop_.data();
@@ -1053,11 +1044,9 @@ private:
         double v, w;  // centre (v) and solid angle per unit Δφ
         float sn, ct;
     };
-    // Stratum row b: its centre, and its strata's solid angle per unit Δφ, cos θ0 − cos θ1 (every
-    // stratum row has ku strata per pixel: fewer towards the poles, keeping them half the narrowest
-    // texel apart by arc length sin θ·Δφ, cut the 8k → 512² strata by a third but put level 0 up
-    // to a fifth further from the exact texel means on the 1024 × 512 HDRIs, forest at N 64:
-    // 0.72 % against 0.61 %).
+    // Stratum row b: its centre, and its strata's solid angle per unit Δφ, cos θ0 − cos θ1. Every
+    // stratum row has ku strata per pixel (fewer towards the poles was measured and not kept:
+    // docs/latlong-conversion.md, "Not done here").
     StratumRow stratumRow(int b) const {
         const double v = (b + 0.5) / nv_;
         return {v, std::cos(kPi * b / nv_) - std::cos(kPi * (b + 1) / nv_), static_cast<float>(std::sin(kPi * v)),
@@ -1195,6 +1184,7 @@ private:
     // interpolation reads its pixel, with that stratum's weight for it. In image order, on the
     // calling thread: they are few (at most 1/64 of the strips they came from).
     void correctCandidates(float limit) {
+        const int nu = static_cast<int>(columns_.size());
         for (const Strip& s : strips_) {
             if (s.deferred) continue;
             for (const Candidate& c : s.candidates) {
@@ -1206,8 +1196,6 @@ private:
                 const int b0 = std::max(0, (c.j - 1) * st_.kv), b1 = std::min(nv_, (c.j + 2) * st_.kv);
                 for (int b = b0; b < b1; ++b) {
                     const StratumRow sr = stratumRow(b);
-                    const StrataColumns& columns = columns_;
-                    const int ku = st_.ku, nu = static_cast<int>(columns.size());
                     float wy = 0.0f;
                     if (one_) {
                         wy = b == c.j ? 1.0f : 0.0f;
@@ -1216,17 +1204,17 @@ private:
                         wy = (r.p0 == p ? 1.0f - r.fy : 0.0f) + (r.p1 == p ? r.fy : 0.0f);
                     }
                     if (wy == 0.0f) continue;
-                    for (int a = (c.i - 1) * ku; a < (c.i + 2) * ku; ++a) {
+                    for (int a = (c.i - 1) * st_.ku; a < (c.i + 2) * st_.ku; ++a) {
                         const std::size_t col = static_cast<std::size_t>(((a % nu) + nu) % nu);
                         float wx = 0.0f;
                         if (one_) {
-                            wx = columns.pixel[col] == c.i ? 1.0f : 0.0f;
+                            wx = columns_.pixel[col] == c.i ? 1.0f : 0.0f;
                         } else {
-                            const Source::Column& t = columns.taps[col];
+                            const Source::Column& t = columns_.taps[col];
                             wx = (t.i0 == c.i ? 1.0f - t.fx : 0.0f) + (t.i1 == c.i ? t.fx : 0.0f);
                         }
                         if (wx == 0.0f) continue;
-                        texel(columns.texelOf(col, sr.sn, sr.ct, n_)) += Rgb(sr.w * glm::dvec3(d * (wx * wy)));
+                        texel(columns_.texelOf(col, sr.sn, sr.ct, n_)) += Rgb(sr.w * glm::dvec3(d * (wx * wy)));
                     }
                 }
             }
