@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -53,6 +54,14 @@ std::vector<Rgb> sky() {
         for (int i = 900; i < 1000; ++i) px[index(i, j)] = Rgb(12.0f, 11.0f, 10.0f);
     for (int j = 700; j < 702; ++j)
         for (int i = 1500; i < 1502; ++i) px[index(i, j)] = Rgb(1e4f, 8e3f, 5e3f);
+    return px;
+}
+
+// The sky with every pixel of rows [j0, j1) at `value`.
+std::vector<Rgb> skyWithRows(int j0, int j1, float value) {
+    std::vector<Rgb> px = sky();
+    std::fill(px.begin() + static_cast<std::ptrdiff_t>(index(0, j0)), px.begin() + static_cast<std::ptrdiff_t>(index(0, j1)),
+              Rgb(value));
     return px;
 }
 
@@ -119,9 +128,7 @@ TEST(LatLongStream, AStripHoldingInfinityWaitsForTheLargestFiniteValue) {
 TEST(LatLongStream, AStripWithManyPixelsAboveItsClampIsKeptWhole) {
     // Ten full rows at 50 in strip 1: its clamp is T_1 ≈ 16 × (0.5 + 0.011 × 50) ≈ 17, so 20480
     // pixels, more than 1/64 of the strip, exceed it.
-    std::vector<Rgb> px = sky();
-    for (int j = 256; j < 266; ++j)
-        for (int i = 0; i < kW; ++i) px[index(i, j)] = Rgb(50.0f);
+    const std::vector<Rgb> px = skyWithRows(256, 266, 50.0f);
     const Converted got = streamed(px, 64, io_detail::kLatLongStripRows), want = streamed(px, 64, kH);
     EXPECT_EQ(got.stats.deferred, 2) << "the bright one (T ≈ 25 stays below 50) and the last";
     expectSameUpToRounding(got.cube, want.cube, "bright strip kept whole");
@@ -130,9 +137,7 @@ TEST(LatLongStream, AStripWithManyPixelsAboveItsClampIsKeptWhole) {
 TEST(LatLongStream, AStripDeferredWhenItCameIsClampedOnceTheSumsHaveGrown) {
     // Ten full rows at 5 in the first strip, whose clamp is T_0 ≈ 16 × 0.15 × 1.3 ≈ 3: deferred
     // when it comes; after the second, T_1 ≈ 9 > 5 and it is clamped and scattered then.
-    std::vector<Rgb> px = sky();
-    for (int j = 100; j < 110; ++j)
-        for (int i = 0; i < kW; ++i) px[index(i, j)] = Rgb(5.0f);
+    const std::vector<Rgb> px = skyWithRows(100, 110, 5.0f);
     const Converted got = streamed(px, 256, io_detail::kLatLongStripRows), want = streamed(px, 256, kH);
     EXPECT_EQ(got.stats.promoted, 1);
     EXPECT_EQ(got.stats.deferred, 1) << "the last";
