@@ -225,8 +225,6 @@ public:
     [[gnu::always_inline]] Rgb tap(const Rgb* r, int i) const { return glm::min(r[i], limit_); }
 
     // Bilinear weights at u (wrapping) and at v (pole rows at v = 0 and 1).
-    Column column(double u) const { return columnAt(u, width); }
-    Row rowAt(double v) const { return rowAtV(v, height); }
     static Column columnAt(double u, int width) {
         const double x = u * width - 0.5;
         const double fl = std::floor(x);
