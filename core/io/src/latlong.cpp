@@ -784,6 +784,7 @@ public:
           one_(st_.ku == 1 && st_.kv == 1), columns_(width, st_.ku, n), rowsPerBand_(bandRows(height, n)), cube_(n),
           weight_(6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0f),
           rowSum_(static_cast<std::size_t>(height), glm::dvec3(0.0)), rowWeight_(static_cast<std::size_t>(height)),
+          rowPeak_(static_cast<std::size_t>(height), std::numeric_limits<float>::infinity()),
           limit_(static_cast<std::size_t>(height), std::numeric_limits<float>::infinity()),
           row_(static_cast<std::size_t>(height), nullptr), kept_(static_cast<std::size_t>(height)),
           done_(static_cast<std::size_t>(height), 0), deferred_(static_cast<std::size_t>(height), 0) {
@@ -953,19 +954,33 @@ private:
         row_[static_cast<std::size_t>(j)] = k.data();
     }
 
+    // Each row's sum, and its brightest channel (rowPeak_), which lets countAbove and above skip
+    // the rows with nothing above the bound: on a sky with one sun, almost every row.
     void sumRows(int y0, int y1) {
         parallelFor(y0, y1, [&](int j) {
             const Rgb* r = row_[static_cast<std::size_t>(j)];
             glm::dvec3 sum(0.0);
-            for (int i = 0; i < width_; ++i) sum += glm::dvec3(r[i]);
+            float peak = 0.0f;
+            for (int i = 0; i < width_; ++i) {
+                sum += glm::dvec3(r[i]);
+                peak = std::max(peak, peakOf(r[i]));
+            }
             rowSum_[static_cast<std::size_t>(j)] = sum;
+            rowPeak_[static_cast<std::size_t>(j)] = peak;
         });
+    }
+    bool anyAbove(int y0, int y1, float limit) const {
+        for (int j = y0; j < y1; ++j)
+            if (!(rowPeak_[static_cast<std::size_t>(j)] <= limit)) return true;
+        return false;
     }
 
     // How many pixels of rows [y0, y1) have their brightest channel above `limit` (branch-free).
     std::size_t countAbove(int y0, int y1, float limit) const {
+        if (!anyAbove(y0, y1, limit)) return 0;
         std::vector<std::size_t> counts(static_cast<std::size_t>(y1 - y0), 0);
         parallelFor(y0, y1, [&](int j) {
+            if (rowPeak_[static_cast<std::size_t>(j)] <= limit) return;
             const Rgb* r = row_[static_cast<std::size_t>(j)];
             std::size_t n = 0;
             for (int i = 0; i < width_; ++i) n += peakOf(r[i]) > limit ? 1u : 0u;
@@ -978,8 +993,10 @@ private:
 
     // The pixels of rows [y0, y1) whose brightest channel exceeds `limit`, in image order.
     std::vector<Candidate> above(int y0, int y1, float limit) const {
+        if (!anyAbove(y0, y1, limit)) return {};
         std::vector<std::vector<Candidate>> parts(static_cast<std::size_t>(y1 - y0));
         parallelFor(y0, y1, [&](int j) {
+            if (rowPeak_[static_cast<std::size_t>(j)] <= limit) return;
             const Rgb* r = row_[static_cast<std::size_t>(j)];
             auto& part = parts[static_cast<std::size_t>(j - y0)];
             for (int i = 0; i < width_; ++i)
@@ -1243,6 +1260,7 @@ private:
     std::vector<float> weight_;
     std::vector<glm::dvec3> rowSum_;  // Σ over the row's pixels
     std::vector<double> rowWeight_;   // cos θ_j − cos θ_{j+1}
+    std::vector<float> rowPeak_;      // the row's brightest channel (+Inf until sumRows)
     double weightSum_ = 0.0;          // Σ rowWeight·width, the image's weight
     glm::dvec3 partial_{0.0};         // Σ rowWeight·rowSum over the finite rows so far
     float clamp_ = 0.0f;              // 16 × partial_'s brightest channel / weightSum_: T's lower bound
