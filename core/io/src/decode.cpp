@@ -10,6 +10,7 @@
 #include <Imath/half.h>
 
 #include <algorithm>
+#include <optional>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -175,33 +176,53 @@ public:
     }
 
     // Linear float RGB of `pixels` pixels from what read() left (in `raw` or already in `out`).
-    void convert(const std::vector<unsigned char>& raw, std::size_t pixels, Rgb* out) const {
+    // Where it converts, it also checks the values as they are written (the first pass of
+    // sanitiseFinite, done while they are in registers and on every core): the largest when all
+    // are clean, nothing when some need fixing or the floats were read in place (then the caller
+    // runs sanitiseFinite).
+    std::optional<float> convert(const std::vector<unsigned char>& raw, std::size_t pixels, Rgb* out) const {
         const std::size_t nc = static_cast<std::size_t>(nc_);
-        auto each = [&](auto sample) {  // out[i] from the nc samples sample(k), k = i·nc + c
-            parallelFor(0, static_cast<int>((pixels + kChunk - 1) / kChunk), [&](int chunk) {
+        auto each = [&](auto sample) -> std::optional<float> {  // out[i] from the samples sample(k), k = i·nc + c
+            const int chunks = static_cast<int>((pixels + kChunk - 1) / kChunk);
+            std::vector<float> largest(static_cast<std::size_t>(chunks), 0.0f);
+            std::vector<std::size_t> notClean(static_cast<std::size_t>(chunks), 0);
+            parallelFor(0, chunks, [&](int chunk) {
                 const std::size_t i0 = static_cast<std::size_t>(chunk) * kChunk, i1 = std::min(pixels, i0 + kChunk);
+                float big = 0.0f;
+                std::size_t dirty = 0;
                 for (std::size_t i = i0; i < i1; ++i) {
                     const std::size_t k = i * nc;
-                    out[i] = nc >= 3 ? Rgb(sample(k), sample(k + 1), sample(k + 2)) : Rgb(sample(k));
+                    const Rgb v = nc >= 3 ? Rgb(sample(k), sample(k + 1), sample(k + 2)) : Rgb(sample(k));
+                    out[i] = v;
+                    for (int c = 0; c < 3; ++c) {
+                        const bool clean = (v[c] >= 0.0f) & (v[c] <= kMaxRadiance);  // false for NaN
+                        dirty += clean ? 0u : 1u;
+                        big = std::max(big, clean ? v[c] : 0.0f);
+                    }
                 }
+                largest[static_cast<std::size_t>(chunk)] = big;
+                notClean[static_cast<std::size_t>(chunk)] = dirty;
             });
+            float big = 0.0f;
+            for (std::size_t c = 0; c < largest.size(); ++c) {
+                if (notClean[c] != 0) return std::nullopt;
+                big = std::max(big, largest[c]);
+            }
+            return big;
         };
         switch (kind_) {
         case Kind::Srgb8: {
             const float* t = srgbTable(8).data();
-            each([&](std::size_t k) { return t[raw[k]]; });
-            break;
+            return each([&](std::size_t k) { return t[raw[k]]; });
         }
         case Kind::Srgb16: {
             const float* t = srgbTable(16).data();
             const auto* r = reinterpret_cast<const std::uint16_t*>(raw.data());
-            each([&](std::size_t k) { return t[r[k]]; });
-            break;
+            return each([&](std::size_t k) { return t[r[k]]; });
         }
         case Kind::Half: {
             const auto* r = reinterpret_cast<const Imath::half*>(raw.data());
-            each([&](std::size_t k) { return static_cast<float>(r[k]); });
-            break;
+            return each([&](std::size_t k) { return static_cast<float>(r[k]); });
         }
         case Kind::Float:
             // Floats are in place; integers other than 8/16 bits are sRGB in [0, 1]; grey replicated.
@@ -213,6 +234,7 @@ public:
                 for (std::size_t i = 0; i < pixels; ++i) out[i] = Rgb(out[i].x);
             break;
         }
+        return std::nullopt;
     }
 
 private:
@@ -234,6 +256,16 @@ private:
     bool otherInteger_ = false, tiled_ = false;
     int rowsPerStrip_ = kStripRows;
 };
+
+// sanitiseFinite for pixels just converted: nothing to do when the conversion found them all
+// clean (`cleanLargest`, their largest), else the whole rule.
+SanitiseCounts sanitiseConverted(std::span<Rgb> px, std::optional<float> cleanLargest, float& maxFinite) {
+    if (cleanLargest) {
+        maxFinite = std::max(maxFinite, *cleanLargest);
+        return {};
+    }
+    return sanitiseFinite(px, maxFinite);
+}
 
 void addStripCounts(SanitiseCounts& counts, const SanitiseCounts& strip) {
     counts.nan += strip.nan;
@@ -272,8 +304,7 @@ Image readOpened(OIIO::ImageInput& in, const fs::path& name, SanitiseCounts& cou
             reader.read(y0, y1, slot.raw, slot.px.data());
             background.run([&, y0, y1] {
                 const std::size_t n = static_cast<std::size_t>(y1 - y0) * w;
-                reader.convert(slot.raw, n, slot.px.data());
-                const SanitiseCounts strip = sanitiseFinite({slot.px.data(), n}, maxFinite);
+                const SanitiseCounts strip = sanitiseConverted({slot.px.data(), n}, reader.convert(slot.raw, n, slot.px.data()), maxFinite);
                 addStripCounts(counts, strip);
                 consume(y0, y1, {slot.px.data(), n}, strip.inf > 0);
             });
@@ -297,8 +328,7 @@ Image readOpened(OIIO::ImageInput& in, const fs::path& name, SanitiseCounts& cou
         Rgb* out = img.px.data() + static_cast<std::size_t>(y0) * w;
         const std::size_t n = static_cast<std::size_t>(y1 - y0) * w;
         reader.read(y0, y1, raw, out);
-        reader.convert(raw, n, out);
-        addStripCounts(counts, sanitiseFinite({out, n}, maxFinite));
+        addStripCounts(counts, sanitiseConverted({out, n}, reader.convert(raw, n, out), maxFinite));
         report(y1);
     }
     if (counts.inf > 0) replaceInfinities(img.px, maxFinite);
