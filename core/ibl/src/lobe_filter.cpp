@@ -153,9 +153,9 @@ constexpr int kTile = 8;
 enum class Pass { Combined, Energy, Geometry };
 
 // A source's texels regrouped node by node (a node's group² texels contiguous, in row order) with
-// every coordinate and colour channel in its own array: the tap loop over one node is then one
-// unit-stride loop the compiler vectorises (`#pragma omp simd`, -fopenmp-simd). Geometry is shared
-// by the six faces (face-local frame); energy and its directions are per face.
+// every coordinate and colour channel in its own array: the tap loop over one node (sumNode) then
+// loads four taps of a channel at once. Geometry is shared by the six faces (face-local frame);
+// energy and its directions are per face.
 struct NodeTaps {
     int taps = 0;  // texels per node, group²
     std::array<std::vector<float>, 4> geo;                  // x, y, z, Ω
@@ -201,9 +201,9 @@ NodeTaps packNodeTaps(const LobeSource& src) {
     return p;
 }
 
-// Σ over one node's taps of w(x)·(E, Ω) with x = ½|r − ω|² (1 − r·ω without cancellation), w
-// cut at xmax. Float sums over at most 16 taps; the caller adds them up in double. (½|r − ω|² is
-// 1 − r·ω for unit vectors, without the cancellation of computing 1 − r·ω directly.)
+// Σ over one node's taps of w(x)·(E, Ω) with x = ½|r − ω|², w cut at xmax. (½|r − ω|² is 1 − r·ω
+// for unit vectors, without the cancellation of computing 1 − r·ω directly.) Float sums over at
+// most 16 taps; the caller adds them up in double.
 struct NodeSum {
     float r = 0.0f, g = 0.0f, b = 0.0f, w = 0.0f;
 };

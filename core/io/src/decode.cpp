@@ -122,6 +122,19 @@ void checkExrHeader(const std::function<bool(std::uint64_t, std::size_t, unsigne
 // and the same image in memory give the same cube.
 constexpr int kStripRows = kLatLongStripRows;
 
+// The sanitising rule's quick test, value by value: clean means not NaN, not negative and at most
+// kMaxRadiance. Almost every image is clean, so a branch-free pass of add() decides whether the
+// exact pass of sanitiseFinite is needed at all.
+struct CleanScan {
+    std::size_t notClean = 0;
+    float largest = 0.0f;  // the largest clean value seen (and whatever it started at)
+    void add(float v) {
+        const bool clean = (v >= 0.0f) & (v <= kMaxRadiance);  // false for NaN
+        notClean += clean ? 0u : 1u;
+        largest = std::max(largest, clean ? v : 0.0f);
+    }
+};
+
 // An opened image read strip by strip: read() takes the file's own samples on the calling thread
 // (OpenImageIO and OpenEXR decompress there), convert() makes them linear float RGB and can run
 // elsewhere. Float files are read straight into the output pixels (a stride of one Rgb), half
@@ -184,31 +197,24 @@ public:
         const std::size_t nc = static_cast<std::size_t>(nc_);
         auto each = [&](auto sample) -> std::optional<float> {  // out[i] from the samples sample(k), k = i·nc + c
             const int chunks = static_cast<int>((pixels + kChunk - 1) / kChunk);
-            std::vector<float> largest(static_cast<std::size_t>(chunks), 0.0f);
-            std::vector<std::size_t> notClean(static_cast<std::size_t>(chunks), 0);
+            std::vector<CleanScan> scans(static_cast<std::size_t>(chunks));
             parallelFor(0, chunks, [&](int chunk) {
                 const std::size_t i0 = static_cast<std::size_t>(chunk) * kChunk, i1 = std::min(pixels, i0 + kChunk);
-                float big = 0.0f;
-                std::size_t dirty = 0;
+                CleanScan scan;
                 for (std::size_t i = i0; i < i1; ++i) {
                     const std::size_t k = i * nc;
                     const Rgb v = nc >= 3 ? Rgb(sample(k), sample(k + 1), sample(k + 2)) : Rgb(sample(k));
                     out[i] = v;
-                    for (int c = 0; c < 3; ++c) {
-                        const bool clean = (v[c] >= 0.0f) & (v[c] <= kMaxRadiance);  // false for NaN
-                        dirty += clean ? 0u : 1u;
-                        big = std::max(big, clean ? v[c] : 0.0f);
-                    }
+                    for (int c = 0; c < 3; ++c) scan.add(v[c]);
                 }
-                largest[static_cast<std::size_t>(chunk)] = big;
-                notClean[static_cast<std::size_t>(chunk)] = dirty;
+                scans[static_cast<std::size_t>(chunk)] = scan;
             });
-            float big = 0.0f;
-            for (std::size_t c = 0; c < largest.size(); ++c) {
-                if (notClean[c] != 0) return std::nullopt;
-                big = std::max(big, largest[c]);
+            float largest = 0.0f;
+            for (const CleanScan& scan : scans) {
+                if (scan.notClean != 0) return std::nullopt;
+                largest = std::max(largest, scan.largest);
             }
-            return big;
+            return largest;
         };
         switch (kind_) {
         case Kind::Srgb8: {
@@ -368,22 +374,16 @@ Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, Impo
 }  // namespace
 
 SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite) {
-    // Almost every image is clean: one branch-free pass (which the compiler vectorises) finds
-    // whether anything needs fixing and the largest value; the exact pass below runs only when
-    // something does. On an 8k panorama this is 0.03 s instead of 0.25 s.
+    // Almost every image is clean: one branch-free pass (CleanScan) finds whether anything needs
+    // fixing and the largest value; the exact pass below runs only when something does. On an 8k
+    // panorama this is 0.03 s instead of 0.25 s.
     {
         const float* f = &px.data()->x;
         const std::size_t count = px.size() * 3;
-        std::size_t notClean = 0;
-        float largest = maxFinite;
-        for (std::size_t i = 0; i < count; ++i) {
-            const float v = f[i];
-            const bool clean = (v >= 0.0f) & (v <= kMaxRadiance);  // false for NaN
-            notClean += clean ? 0u : 1u;
-            largest = std::max(largest, clean ? v : 0.0f);
-        }
-        if (notClean == 0) {
-            maxFinite = largest;
+        CleanScan scan{0, maxFinite};
+        for (std::size_t i = 0; i < count; ++i) scan.add(f[i]);
+        if (scan.notClean == 0) {
+            maxFinite = scan.largest;
             return {};
         }
     }
