@@ -29,14 +29,23 @@ ImportedEnvironment finish(CubeMap cube, ImportReport report, int faceSize, cons
     return {std::move(cube), std::move(report)};
 }
 
+// A single image's layout: the one asked for, else the one its proportions say (throws EnvError
+// naming `file` when they say none).
+EnvLayout layoutOf(const ImportOptions& options, int width, int height, const fs::path& file) {
+    return options.layout == EnvLayout::Auto ? detectLayout(width, height, file) : options.layout;
+}
+
+// A lat-long's face size: the one asked for, else a quarter of its width.
+int latLongFaceSize(const ImportOptions& options, int width) {
+    return options.faceSize > 0 ? options.faceSize : std::max(1, width / 4);
+}
+
 ImportedEnvironment fromSingleImage(const Image& img, const fs::path& file, const ImportOptions& options,
                                     ImportReport report, const Progress& progress) {
-    EnvLayout layout = options.layout;
-    if (layout == EnvLayout::Auto) layout = detectLayout(img, file);
+    const EnvLayout layout = layoutOf(options, img.width, img.height, file);
     report.layout = layout;
     if (layout == EnvLayout::LatLong) {
-        const int n = options.faceSize > 0 ? options.faceSize : std::max(1, img.width / 4);
-        CubeMap cube = latLongToCube(img, n, progress, 0.3f, 0.95f);
+        CubeMap cube = latLongToCube(img, latLongFaceSize(options, img.width), progress, 0.3f, 0.95f);
         return finish(std::move(cube), std::move(report), 0, progress);
     }
     CubeMap cube = cubeFromLayout(img, layout, file);
@@ -127,15 +136,13 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
     ImportReport report;
     std::unique_ptr<LatLongStream> stream;
     const ChooseStrips choose = [&](int width, int height) -> StripConsumer {
-        EnvLayout layout = options.layout;
-        if (layout == EnvLayout::Auto) {
-            try {
-                layout = detectLayout(width, height, path);
-            } catch (const EnvError&) {
-                return {};  // decoded whole, refused by fromSingleImage as before
-            }
+        EnvLayout layout;
+        try {
+            layout = layoutOf(options, width, height, path);
+        } catch (const EnvError&) {
+            return {};  // decoded whole, refused by fromSingleImage as before
         }
-        const int n = options.faceSize > 0 ? options.faceSize : std::max(1, width / 4);
+        const int n = latLongFaceSize(options, width);
         if (layout != EnvLayout::LatLong || !latLongStreams(width, height, n)) return {};
         stream = std::make_unique<LatLongStream>(width, height, n);
         return [&stream](int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {

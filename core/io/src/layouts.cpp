@@ -103,8 +103,6 @@ constexpr const char* kAcceptedProportions =
     "accepted proportions: 2:1 lat-long, 4:3 horizontal cross, 3:4 vertical cross, "
     "6:1 horizontal strip, 1:6 vertical strip, or six square face files";
 
-EnvLayout detectLayout(const Image& img, const fs::path& file) { return detectLayout(img.width, img.height, file); }
-
 EnvLayout detectLayout(int width, int height, const fs::path& file) {
     // Within 2 % of a known proportion: the layout's own check then names an exact mismatch.
     const double ratio = static_cast<double>(width) / static_cast<double>(height);

@@ -21,8 +21,7 @@ enum class Place {
 // Copies the n×n block of `img` at (x0, y0) into face f, placed as `place` says.
 void copyFace(const Image& img, int x0, int y0, int n, CubeMap& cube, Face f, Place place);
 
-// The layout whose proportions the image has (within 2 %). Throws EnvError naming `file`.
-EnvLayout detectLayout(const Image& img, const std::filesystem::path& file);
+// The layout whose proportions a width × height image has (within 2 %). Throws EnvError naming `file`.
 EnvLayout detectLayout(int width, int height, const std::filesystem::path& file);
 
 // A cross or strip -> cube (not lat-long). Throws EnvError when the size does not fit the layout.
