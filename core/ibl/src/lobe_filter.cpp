@@ -314,21 +314,13 @@ void convolveTile(const LobeSource& src, const NodeTaps& taps, const WeightTable
                 if (glm::dot(r, grid.axis[static_cast<std::size_t>(id)]) < threshold) continue;
                 const std::size_t fi = static_cast<std::size_t>(id / perFace);
                 const std::size_t off = static_cast<std::size_t>(nodeLocal) * static_cast<std::size_t>(n);
-                const float* gx = taps.geo[0].data() + off;
-                const float* gy = taps.geo[1].data() + off;
-                const float* gz = taps.geo[2].data() + off;
-                const float* om = taps.geo[3].data() + off;
-                const float* er = taps.energy[0][fi].data() + off;
-                const float* eg = taps.energy[1][fi].data() + off;
-                const float* eb = taps.energy[2][fi].data() + off;
-                NodeSum s;
-                if constexpr (kPass == Pass::Energy)
-                    s = sumNode<true, false>(rl[fi], taps.dir[0][fi].data() + off, taps.dir[1][fi].data() + off,
-                                             taps.dir[2][fi].data() + off, er, eg, eb, om, n, table);
-                else if constexpr (kPass == Pass::Geometry)
-                    s = sumNode<false, true>(rl[fi], gx, gy, gz, er, eg, eb, om, n, table);
-                else
-                    s = sumNode<true, true>(rl[fi], gx, gy, gz, er, eg, eb, om, n, table);
+                // The energy pass weighs by the energy's own directions, the others by the texels'.
+                auto dir = [&](std::size_t c) {
+                    return (kPass == Pass::Energy ? taps.dir[c][fi].data() : taps.geo[c].data()) + off;
+                };
+                auto energy = [&](std::size_t c) { return taps.energy[c][fi].data() + off; };
+                const NodeSum s = sumNode<kPass != Pass::Geometry, kPass != Pass::Energy>(
+                    rl[fi], dir(0), dir(1), dir(2), energy(0), energy(1), energy(2), taps.geo[3].data() + off, n, table);
                 acc += glm::dvec3(s.r, s.g, s.b);
                 wsum += static_cast<double>(s.w);
             }
