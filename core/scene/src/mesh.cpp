@@ -2,11 +2,8 @@
 
 #include "mesh_validate.h"
 
-#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/IO/importer/ImporterT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -23,13 +20,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <iostream>
 #include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
-#include <sstream>
-#include <streambuf>
 #include <string_view>
 #include <utility>
 
@@ -57,11 +51,9 @@ bool Mesh::isValid() const {
 
 namespace {
 
-using meshfile::Declared;
 using meshfile::faces;
 using meshfile::vertices;
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-using OpenMesh::FaceHandle;
 using OpenMesh::VertexHandle;
 
 constexpr std::array<const char*, 5> kExtensions = {".obj", ".off", ".ply", ".stl", ".om"};
@@ -84,160 +76,13 @@ std::string extensionList() {
 }
 
 
-// ---------------------------------------------------------------------------------------------
-// Input plumbing: a read-only, seekable stream over bytes already in memory (the OBJ reader reads
-// twice, so it seeks back), which also notes whether a reader tried to read past the end: for
-// the binary formats that is how a truncated file shows itself.
-
-class MemoryStreamBuf : public std::streambuf {
-public:
-    explicit MemoryStreamBuf(std::span<const unsigned char> bytes) {
-        // The get area is never written through: no putback buffer, no output.
-        char* begin = const_cast<char*>(reinterpret_cast<const char*>(bytes.data()));
-        setg(begin, begin, begin + bytes.size());
-    }
-    bool readPastEnd() const { return readPastEnd_; }
-
-protected:
-    int_type underflow() override {
-        if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-        readPastEnd_ = true;
-        return traits_type::eof();
-    }
-    pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode which) override {
-        if (!(which & std::ios_base::in)) return pos_type(off_type(-1));
-        const off_type size = egptr() - eback();
-        const off_type base = dir == std::ios_base::beg ? 0 : dir == std::ios_base::cur ? gptr() - eback() : size;
-        const off_type target = base + off;
-        if (target < 0 || target > size) return pos_type(off_type(-1));
-        setg(eback(), eback() + target, egptr());
-        return pos_type(target);
-    }
-    pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
-        return seekoff(off_type(pos), std::ios_base::beg, which);
-    }
-
-private:
-    bool readPastEnd_ = false;
-};
-
-// OpenMesh's readers keep state in singletons and report through the global omerr()/omlog()
-// streams, so reads are serialised. While one runs, its messages are collected here (for the
-// error text) instead of reaching the console.
+// OpenMesh's writers keep state in singletons (its IOManager), so writes are serialised.
 std::mutex& openMeshMutex() {
     static std::mutex m;
     return m;
 }
 
-class CapturedOpenMeshMessages {
-public:
-    CapturedOpenMeshMessages() {
-        for (Route& r : routes_) {
-            r.wasConnected = r.stream.disconnect(r.console);
-            r.stream.connect(text_);
-        }
-    }
-    ~CapturedOpenMeshMessages() {
-        for (Route& r : routes_) {
-            r.stream.disconnect(text_);
-            if (r.wasConnected) r.stream.connect(r.console);
-        }
-    }
-    CapturedOpenMeshMessages(const CapturedOpenMeshMessages&) = delete;
-    CapturedOpenMeshMessages& operator=(const CapturedOpenMeshMessages&) = delete;
-
-    // The first message, trimmed, or "" when OpenMesh said nothing.
-    std::string firstLine() const {
-        std::istringstream in(text_.str());
-        std::string line;
-        while (std::getline(in, line)) {
-            const auto b = line.find_first_not_of(" \t\r");
-            if (b == std::string::npos) continue;
-            return line.substr(b, line.find_last_not_of(" \t\r") + 1 - b);
-        }
-        return {};
-    }
-
-private:
-    struct Route {
-        OpenMesh::mostream& stream;
-        std::ostream& console;  // where OpenMesh connects it by default
-        bool wasConnected;
-    };
-
-    std::ostringstream text_;
-    std::array<Route, 3> routes_{Route{::omerr(), std::cerr, false}, Route{::omlog(), std::clog, false},
-                                 Route{::omout(), std::cout, false}};
-};
-
-// OpenMesh's ImporterT drops a face it dislikes with a console message and goes on; this one
-// counts each case so the loader can say what was wrong. It also triangulates polygons itself (a
-// fan, each triangle added on its own), and where the half-edge structure cannot take a triangle
-// (an edge shared by three faces, a vertex joining two fans) gives that triangle its own copies
-// of the vertices and remembers the originals, so the output mesh stays welded as in the file.
-class CheckingImporter final : public OpenMesh::IO::ImporterT<OMesh> {
-public:
-    explicit CheckingImporter(OMesh& mesh) : ImporterT<OMesh>(mesh), target_(mesh) {}
-
-    using ImporterT<OMesh>::add_face;
-    FaceHandle add_face(const VHandles& face) override {
-        ++facesSeen;
-        if (face.size() < 3) {
-            ++shortFaces;
-            return FaceHandle();
-        }
-        for (VertexHandle vh : face)
-            if (!target_.is_valid_handle(vh)) {
-                ++badIndexFaces;
-                return FaceHandle();
-            }
-        corners_.clear();
-        for (VertexHandle vh : face) corners_.push_back(static_cast<std::uint32_t>(vh.idx()));
-        const std::vector<std::uint32_t> distinct = meshfile::distinctInOrder(corners_);
-        if (distinct.size() < 3) {
-            ++repeatedVertexFaces;
-            return FaceHandle();
-        }
-        distinct_.clear();
-        for (std::uint32_t v : distinct) distinct_.emplace_back(static_cast<int>(v));
-        FaceHandle last;
-        for (std::size_t i = 1; i + 1 < distinct_.size(); ++i) {
-            last = target_.add_face(distinct_[0], distinct_[i], distinct_[i + 1]);
-            if (!last.is_valid()) last = addSeparately({distinct_[0], distinct_[i], distinct_[i + 1]});
-        }
-        return last;
-    }
-
-    std::size_t facesSeen = 0;                // faces the reader handed over
-    std::size_t shortFaces = 0;               // fewer than 3 vertices
-    std::size_t badIndexFaces = 0;            // a vertex index the file does not have
-    std::size_t repeatedVertexFaces = 0;      // fewer than 3 distinct vertices: zero area
-    std::vector<std::pair<int, int>> copies;  // (copy, original) vertex indices
-
-private:
-    FaceHandle addSeparately(const std::array<VertexHandle, 3>& tri) {
-        std::array<VertexHandle, 3> own;
-        for (std::size_t k = 0; k < 3; ++k) {
-            const OMesh::Point p = target_.point(tri[k]);  // a copy: add_vertex may reallocate
-            own[k] = target_.add_vertex(p);
-            copies.emplace_back(own[k].idx(), tri[k].idx());
-        }
-        return target_.add_face(own[0], own[1], own[2]);
-    }
-
-    OMesh& target_;
-    std::vector<std::uint32_t> corners_;
-    std::vector<VertexHandle> distinct_;
-};
-
-
-std::string formatName(const std::string& ext) {
-    std::string name = ext.substr(1);
-    for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return name;
-}
-
-bool isZeroArea(const OMesh::Point& a, const OMesh::Point& b, const OMesh::Point& c) {
+bool isZeroArea(const std::array<float, 3>& a, const std::array<float, 3>& b, const std::array<float, 3>& c) {
     const glm::dvec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]), pc(c[0], c[1], c[2]);
     const glm::dvec3 e0 = pb - pa, e1 = pc - pa, e2 = pc - pb;
     const glm::dvec3 n = glm::cross(e0, e1);
@@ -248,114 +93,44 @@ bool isZeroArea(const OMesh::Point& a, const OMesh::Point& b, const OMesh::Point
 
 constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
 
+meshfile::Polygons readPolygons(std::span<const unsigned char> bytes, const std::string& file,
+                                const std::string& ext) {
+    if (ext == ".obj") return meshfile::parseObj(bytes, file);
+    if (ext == ".stl") return meshfile::parseStl(bytes, file);
+    if (ext == ".ply") return meshfile::parsePly(bytes, file);
+    if (ext == ".off") return meshfile::parseOff(bytes, file);
+    return meshfile::parseOm(bytes, file);
+}
+
 Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, const std::string& ext,
               MeshReport* report) {
     if (std::find(kExtensions.begin(), kExtensions.end(), ext) == kExtensions.end())
         throw MeshError(file, "unsupported mesh format '" + ext + "' (expected " + extensionList() + ")");
     if (bytes.empty()) throw MeshError(file, "file is empty (0 bytes)");
-    const std::string format = formatName(ext);
 
-    std::vector<std::string> warnings;
-    Declared declared;
-    bool binary = false;
-    // PLY, OFF and OM are read by meshfile (mesh_validate.h says why), OBJ and STL by OpenMesh
-    // once checked.
-    std::optional<meshfile::Polygons> polygons;
-    if (ext == ".obj")
-        declared = meshfile::checkObj(bytes, file);
-    else if (ext == ".stl")
-        declared = meshfile::checkStl(bytes, file, binary, warnings);
-    else {
-        polygons = ext == ".ply"   ? meshfile::parsePly(bytes, file)
-                   : ext == ".off" ? meshfile::parseOff(bytes, file)
-                                   : meshfile::parseOm(bytes, file);
-        declared = {polygons->positions.size(), polygons->faceCount(), 0};
-        warnings = std::move(polygons->warnings);
-        binary = true;  // read whole: no stream for OpenMesh to fail on
-    }
-
-    OMesh om;
-    CheckingImporter importer(om);
-    OpenMesh::IO::Options options;
-    if (ext == ".stl" && binary) options += OpenMesh::IO::Options::Binary;
-    bool ok = false, pastEnd = false;
-    std::string said;
-    {
-        std::lock_guard lock(openMeshMutex());
-        CapturedOpenMeshMessages messages;
-        if (polygons) {
-            importer.reserve(static_cast<unsigned>(polygons->positions.size()), 0,
-                             static_cast<unsigned>(polygons->faceCount()));
-            for (const auto& p : polygons->positions) importer.add_vertex(OMesh::Point(p[0], p[1], p[2]));
-            CheckingImporter::VHandles face;
-            for (std::size_t f = 0; f < polygons->faceCount(); ++f) {
-                face.clear();
-                for (std::size_t c = polygons->faceStarts[f]; c < polygons->faceStarts[f + 1]; ++c)
-                    face.emplace_back(static_cast<int>(polygons->corners[c]));
-                importer.add_face(face);
-            }
-            ok = true;
-        } else {
-            MemoryStreamBuf buffer(bytes);
-            std::istream in(&buffer);
-            ok = OpenMesh::IO::IOManager().read(in, ext, importer, options);
-            pastEnd = buffer.readPastEnd();
-        }
-        said = messages.firstLine();
-    }
-    const std::string detail = said.empty() ? "" : " (OpenMesh: " + said + ")";
-    // Binary readers never look past the data they expect; text readers fail at the end of a
-    // short file.
-    if (pastEnd && (binary || !ok))
-        throw MeshError(file, "truncated or corrupt file: it ends before the data its header announces" + detail);
-    if (!ok) throw MeshError(file, "not a readable " + format + " file" + detail);
-    if (importer.shortFaces > 0)
-        throw MeshError(file, faces(importer.shortFaces) + " with fewer than 3 vertices (truncated or corrupt file)");
-    if (importer.badIndexFaces > 0)
-        throw MeshError(file, faces(importer.badIndexFaces) + (importer.badIndexFaces == 1 ? " refers" : " refer") +
-                                  " to vertices the file does not have (truncated or corrupt file)");
-
-    const std::size_t vertexCount = om.n_vertices();
-    const std::size_t fileVertices = vertexCount - importer.copies.size();
-    if (declared.vertices && *declared.vertices != fileVertices)
-        throw MeshError(file, "truncated or corrupt file: " + vertices(*declared.vertices) + " expected, " +
-                                  std::to_string(fileVertices) + " could be read" + detail);
-    std::size_t zeroArea = importer.repeatedVertexFaces + declared.zeroAreaFaces;
-    if (declared.faces && ext == ".stl") {
-        zeroArea += *declared.faces - std::min(*declared.faces, importer.facesSeen);  // merged corners
-    } else if (declared.faces && importer.facesSeen + declared.zeroAreaFaces != *declared.faces) {
-        throw MeshError(file, "truncated or corrupt file: " + faces(*declared.faces) + " expected, " +
-                                  std::to_string(importer.facesSeen + declared.zeroAreaFaces) + " could be read" +
-                                  detail);
-    }
-
-    // Copies made for non-manifold triangles map back to the file's vertex.
-    std::vector<std::uint32_t> original(vertexCount);
-    for (std::size_t v = 0; v < vertexCount; ++v) original[v] = static_cast<std::uint32_t>(v);
-    for (const auto& [copy, source] : importer.copies)
-        original[static_cast<std::size_t>(copy)] = static_cast<std::uint32_t>(source);
-
-    const OMesh::Point* points = om.points();
+    meshfile::Polygons polygons = readPolygons(bytes, file, ext);
+    std::vector<std::string> warnings = std::move(polygons.warnings);
+    const std::size_t fileVertices = polygons.positions.size();
+    const auto& points = polygons.positions;
     std::size_t nonFinite = 0;
-    for (std::size_t v = 0; v < vertexCount; ++v)
-        if (original[v] == v &&
-            !(std::isfinite(points[v][0]) && std::isfinite(points[v][1]) && std::isfinite(points[v][2])))
-            ++nonFinite;
+    for (const auto& p : points)
+        if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++nonFinite;
     if (nonFinite > 0) throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates");
 
-    // Triangles in file vertex numbers (the importer adds triangles only; a polygon would become a fan).
+    // Each face as a fan over its distinct corners, in file vertex numbers; a face of fewer than
+    // three distinct corners, or a fan triangle of zero area, is dropped and counted.
     Mesh mesh;
     mesh.name = fs::path(file).stem().string();
-    mesh.indices.reserve(3 * om.n_faces());
-    std::vector<std::uint32_t> loop;
-    for (const auto fh : om.faces()) {
-        loop.clear();
-        const auto first = om.halfedge_handle(fh);
-        auto he = first;
-        do {
-            loop.push_back(original[static_cast<std::size_t>(om.to_vertex_handle(he).idx())]);
-            he = om.next_halfedge_handle(he);
-        } while (he != first && loop.size() <= vertexCount);
+    mesh.indices.reserve(3 * polygons.faceCount());
+    std::size_t zeroArea = 0;
+    for (std::size_t f = 0; f < polygons.faceCount(); ++f) {
+        const std::span<const std::uint32_t> face(polygons.corners.data() + polygons.faceStarts[f],
+                                                  polygons.faceStarts[f + 1] - polygons.faceStarts[f]);
+        const std::vector<std::uint32_t> loop = meshfile::distinctInOrder(face);
+        if (loop.size() < 3) {
+            ++zeroArea;
+            continue;
+        }
         for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
             const std::array<std::uint32_t, 3> tri{loop[0], loop[i], loop[i + 1]};
             if (isZeroArea(points[tri[0]], points[tri[1]], points[tri[2]])) {
@@ -372,10 +147,10 @@ Mesh readMesh(std::span<const unsigned char> bytes, const std::string& file, con
     }
 
     // Keep the vertices faces use, in file order.
-    std::vector<std::uint32_t> remap(vertexCount, kUnused);
+    std::vector<std::uint32_t> remap(fileVertices, kUnused);
     for (std::uint32_t i : mesh.indices) remap[i] = 0;
     mesh.positions.reserve(fileVertices);
-    for (std::size_t v = 0; v < vertexCount; ++v) {
+    for (std::size_t v = 0; v < fileVertices; ++v) {
         if (remap[v] == kUnused) continue;
         remap[v] = static_cast<std::uint32_t>(mesh.positions.size());
         mesh.positions.emplace_back(points[v][0], points[v][1], points[v][2]);

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <unordered_map>
 #include <string_view>
 #include <utility>
 
@@ -83,13 +84,14 @@ std::optional<float> parseFloat(std::string_view token) {
     return static_cast<float>(value);
 }
 
-// Three readable coordinates at the front of `rest`; `finite` says whether all three are.
-bool parseXyz(std::string_view rest, bool& finite) {
+// Three readable coordinates at the front of `rest` into `xyz`; `finite` says whether all three are.
+bool parseXyz(std::string_view rest, bool& finite, std::array<float, 3>& xyz) {
     finite = true;
-    for (int k = 0; k < 3; ++k) {
+    for (float& c : xyz) {
         const auto value = parseFloat(nextToken(rest));
         if (!value) return false;
-        finite = finite && std::isfinite(*value);
+        c = *value;
+        finite = finite && std::isfinite(c);
     }
     return true;
 }
@@ -111,31 +113,32 @@ std::string binaryByteText(std::span<const unsigned char> bytes, std::size_t at)
 
 }  // namespace
 
-// OBJ: OpenMesh reads vertices with operator>> (which rejects "nan", "inf" and overflowing
-// numbers, and then skips the line, shifting every later index), drops faces with a bad index or
-// fewer than three distinct vertices without a word, and skips unreadable index tokens. So the
-// file is checked here first, with line numbers for the messages.
-Declared checkObj(std::span<const unsigned char> bytes, const std::string& file) {
+// OBJ: positions ("v") and faces ("f", each corner's vertex index before any '/'; negative
+// indices count back from the last vertex read). Everything else (texture coordinates, normals,
+// groups, materials) is skipped. Every line is checked, with line numbers for the messages.
+Polygons parseObj(std::span<const unsigned char> bytes, const std::string& file) {
     if (const auto at = firstBinaryByte(bytes))
         throw MeshError(file, "not an OBJ file: binary data (" + binaryByteText(bytes, *at) + ")");
     LineScanner lines(bytes);
-    std::size_t vertexCount = 0, faceCount = 0, zeroArea = 0, nonFinite = 0, firstNonFiniteLine = 0;
+    Polygons out;
+    std::size_t nonFinite = 0, firstNonFiniteLine = 0;
     long long maxIndex = 0;
     std::size_t maxIndexLine = 0;
-    std::vector<std::uint32_t> corners;
+    std::vector<std::uint32_t>& corners = out.corners;
     while (!lines.done()) {
         std::string_view rest = lines.next();
         const std::string_view key = nextToken(rest);
         if (key == "v") {
+            std::array<float, 3> p{};
             bool finite = true;
-            if (!parseXyz(rest, finite))
+            if (!parseXyz(rest, finite, p))
                 throw MeshError(file, atLine(lines.lineNumber()) +
                                           "a vertex without three readable coordinates (truncated or corrupt file)");
             if (!finite && nonFinite++ == 0) firstNonFiniteLine = lines.lineNumber();
-            ++vertexCount;
+            out.positions.push_back(p);
         } else if (key == "f") {
-            ++faceCount;
-            corners.clear();
+            const std::size_t vertexCount = out.positions.size();
+            const std::size_t faceStart = corners.size();
             for (std::string_view token = nextToken(rest); !token.empty() && token[0] != '#';
                  token = nextToken(rest)) {
                 const std::string_view index = token.substr(0, token.find('/'));
@@ -152,27 +155,27 @@ Declared checkObj(std::span<const unsigned char> bytes, const std::string& file)
                     maxIndex = value;
                     maxIndexLine = lines.lineNumber();
                 }
-                if (corners.size() == kMaxFaceCorners)
+                if (corners.size() - faceStart == kMaxFaceCorners)
                     throw MeshError(file, atLine(lines.lineNumber()) + "a face with more than " +
                                               std::to_string(kMaxFaceCorners) + " vertices (corrupt file)");
-                // Beyond 32 bits it is out of range anyway (the check below says so).
-                corners.push_back(static_cast<std::uint32_t>(std::min<long long>(value, 0xffffffffLL)));
+                // Beyond 32 bits it is out of range anyway (the check below says so). Stored from 0.
+                corners.push_back(static_cast<std::uint32_t>(std::min<long long>(value, 0xffffffffLL) - 1));
             }
             // A face line cut short is how a truncated file usually ends.
-            if (corners.size() < 3)
-                throw MeshError(file, atLine(lines.lineNumber()) + "a face with only " + vertices(corners.size()) +
-                                          " (truncated or corrupt file)");
-            if (distinctInOrder(corners).size() < 3) ++zeroArea;
+            if (corners.size() - faceStart < 3)
+                throw MeshError(file, atLine(lines.lineNumber()) + "a face with only " +
+                                          vertices(corners.size() - faceStart) + " (truncated or corrupt file)");
+            out.faceStarts.push_back(corners.size());
         }
     }
     if (nonFinite > 0)
         throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates, first at line " +
                                   std::to_string(firstNonFiniteLine));
-    if (maxIndex > static_cast<long long>(vertexCount))
+    if (maxIndex > static_cast<long long>(out.positions.size()))
         throw MeshError(file, atLine(maxIndexLine) + "a face refers to vertex " + std::to_string(maxIndex) +
-                                  ", but the file has only " + vertices(vertexCount) +
+                                  ", but the file has only " + vertices(out.positions.size()) +
                                   " (truncated or corrupt file)");
-    return {vertexCount, faceCount, zeroArea};
+    return out;
 }
 
 namespace {
@@ -191,11 +194,49 @@ bool startsWithWord(std::span<const unsigned char> bytes, std::string_view word)
     return true;
 }
 
-// ASCII STL: OpenMesh reads the three lines after each "outer loop" as vertices whatever they
-// hold (a cut-off facet becomes a triangle at the origin), and reads "nan" as 0.
-Declared checkAsciiStl(std::span<const unsigned char> bytes, const std::string& file) {
+// STL stores each triangle's corners as coordinates; corners at the same position are one vertex
+// (welded by exact value, -0 and +0 alike), numbered in the order they first appear, so the mesh
+// is connected and its normals smooth where the surface is.
+class StlWelder {
+public:
+    explicit StlWelder(Polygons& out) : out_(out) {}
+    void reserve(std::size_t triangles) {
+        out_.corners.reserve(3 * triangles);
+        out_.faceStarts.reserve(triangles + 1);
+        index_.reserve(triangles);  // a closed triangle mesh has about half as many vertices
+    }
+    void corner(const std::array<float, 3>& p) {
+        Key key{};
+        for (std::size_t c = 0; c < 3; ++c) {
+            const float v = p[c] + 0.0f;  // -0 becomes +0
+            std::memcpy(&key[c], &v, sizeof v);
+        }
+        const auto [it, added] = index_.try_emplace(key, static_cast<std::uint32_t>(out_.positions.size()));
+        if (added) out_.positions.push_back(p);
+        out_.corners.push_back(it->second);
+        if (out_.corners.size() % 3 == 0) out_.faceStarts.push_back(out_.corners.size());
+    }
+
+private:
+    using Key = std::array<std::uint32_t, 3>;
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            std::uint64_t h = 0x9e3779b97f4a7c15ull;
+            for (std::uint32_t v : k) h = (h ^ v) * 0xff51afd7ed558ccdull;
+            return static_cast<std::size_t>(h ^ (h >> 32));
+        }
+    };
+    Polygons& out_;
+    std::unordered_map<Key, std::uint32_t, Hash> index_;
+};
+
+// ASCII STL: three "vertex" lines after each "outer loop"; a facet cut short, or a file without
+// its "endsolid", is a truncated file.
+Polygons parseAsciiStl(std::span<const unsigned char> bytes, const std::string& file) {
     LineScanner lines(bytes);
-    std::size_t facets = 0, nonFinite = 0, firstNonFiniteLine = 0;
+    Polygons out;
+    StlWelder weld(out);
+    std::size_t nonFinite = 0, firstNonFiniteLine = 0;
     bool ended = false;  // an "endsolid" after the last facet: the file is whole
     while (!lines.done()) {
         const std::string_view line = lines.next();
@@ -205,35 +246,35 @@ Declared checkAsciiStl(std::span<const unsigned char> bytes, const std::string& 
         }
         if (line.find("outer") == std::string_view::npos && line.find("OUTER") == std::string_view::npos) continue;
         ended = false;
-        ++facets;
         const std::size_t facetLine = lines.lineNumber();
         for (int k = 0; k < 3; ++k) {
             std::string_view rest = lines.done() ? std::string_view{} : lines.next();
             const std::string_view key = nextToken(rest);
+            std::array<float, 3> p{};
             bool finite = true;
-            if ((key != "vertex" && key != "VERTEX") || !parseXyz(rest, finite))
+            if ((key != "vertex" && key != "VERTEX") || !parseXyz(rest, finite, p))
                 throw MeshError(
                     file, atLine(facetLine) + "a facet without three readable vertices (truncated or corrupt file)");
             if (!finite && nonFinite++ == 0) firstNonFiniteLine = lines.lineNumber();
+            weld.corner(p);
         }
     }
     if (!ended) throw MeshError(file, "truncated or corrupt file: the ASCII STL does not end with 'endsolid'");
     if (nonFinite > 0)
         throw MeshError(file, vertices(nonFinite) + " with non-finite (NaN or infinite) coordinates, first at line " +
                                   std::to_string(firstNonFiniteLine));
-    return {std::nullopt, facets, 0};
+    return out;
 }
 
 }  // namespace
 
 // STL comes as text or binary with nothing but the size to tell them apart (binary headers may
 // start with "solid" too): binary is 84 bytes plus 50 per triangle, the count at offset 80.
-Declared checkStl(std::span<const unsigned char> bytes, const std::string& file, bool& binary,
-                  std::vector<std::string>& warnings) {
+Polygons parseStl(std::span<const unsigned char> bytes, const std::string& file) {
     const std::uint64_t triangles = bytes.size() >= 84 ? readLe32(bytes, 80) : 0;
     const std::uint64_t binarySize = 84 + 50 * triangles;
-    binary = bytes.size() >= 84 && bytes.size() == binarySize;
-    if (!binary && startsWithWord(bytes, "solid") && !firstBinaryByte(bytes)) return checkAsciiStl(bytes, file);
+    const bool binary = bytes.size() >= 84 && bytes.size() == binarySize;
+    if (!binary && startsWithWord(bytes, "solid") && !firstBinaryByte(bytes)) return parseAsciiStl(bytes, file);
     if (bytes.size() < 84)
         throw MeshError(file, "not an STL file: too short for binary STL (" + std::to_string(bytes.size()) +
                                   " bytes) and not ASCII STL (no 'solid')");
@@ -241,28 +282,28 @@ Declared checkStl(std::span<const unsigned char> bytes, const std::string& file,
         throw MeshError(file, "truncated or corrupt binary STL: the header announces " + std::to_string(triangles) +
                                   " triangles (" + std::to_string(binarySize) + " bytes), the file has " +
                                   std::to_string(bytes.size()) + " bytes");
+    Polygons out;
     if (bytes.size() > binarySize)
-        warnings.push_back(file + ": " + std::to_string(bytes.size() - binarySize) +
-                           " bytes after the last triangle ignored");
-    binary = true;
-    // Non-finite coordinates checked here: OpenMesh merges corners in an ordered map, which NaN breaks.
+        out.warnings.push_back(file + ": " + std::to_string(bytes.size() - binarySize) +
+                               " bytes after the last triangle ignored");
+    StlWelder weld(out);
+    weld.reserve(static_cast<std::size_t>(triangles));
     std::size_t nonFinite = 0;
     for (std::uint64_t t = 0; t < triangles; ++t)
-        for (std::size_t k = 0; k < 3; ++k) {
-            bool finite = true;
+        for (std::size_t k = 0; k < 3; ++k) {  // after the facet normal (12 bytes), three corners
+            std::array<float, 3> p{};
             for (std::size_t c = 0; c < 3; ++c) {
                 const std::uint32_t raw =
                     readLe32(bytes, static_cast<std::size_t>(84 + 50 * t + 12 * (k + 1) + 4 * c));
-                float value;
-                std::memcpy(&value, &raw, sizeof value);
-                finite = finite && std::isfinite(value);
+                std::memcpy(&p[c], &raw, sizeof raw);
             }
-            if (!finite) ++nonFinite;
+            if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++nonFinite;
+            weld.corner(p);
         }
     if (nonFinite > 0)
         throw MeshError(file,
                         vertices(nonFinite) + " (triangle corners) with non-finite (NaN or infinite) coordinates");
-    return {std::nullopt, static_cast<std::size_t>(triangles), 0};
+    return out;
 }
 
 namespace {
@@ -978,7 +1019,7 @@ Polygons parseOff(std::span<const unsigned char> bytes, const std::string& file)
 // edge counts; chunks follow. OpenMesh reserves what the counts say and reads each chunk for
 // that many entities, so the counts must fit the file: a position is 3 floats, and every face
 // and edge takes at least a byte of some chunk.
-Declared checkOm(std::span<const unsigned char> bytes, const std::string& file) {
+void checkOm(std::span<const unsigned char> bytes, const std::string& file) {
     if (bytes.size() < 16 || bytes[0] != 'O' || bytes[1] != 'M')
         throw MeshError(file, "not an OpenMesh .om file (no 'OM' signature)");
     const std::uint64_t vertexCount = readLe32(bytes, 4), faceCount = readLe32(bytes, 8),
@@ -988,7 +1029,6 @@ Declared checkOm(std::span<const unsigned char> bytes, const std::string& file) 
         throw MeshError(file, "truncated or corrupt file: the header announces " + vertices(vertexCount) + ", " +
                                   faces(faceCount) + " and " + std::to_string(edgeCount) + " edges, more than " +
                                   std::to_string(size) + " bytes can hold");
-    return {vertexCount, faceCount, 0};
 }
 
 // ---------------------------------------------------------------------------------------------

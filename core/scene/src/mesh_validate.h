@@ -1,25 +1,25 @@
-// Mesh files checked byte by byte before anything reads them (internal to mipgloss_scene).
+// The mesh file readers (internal to mipgloss_scene): pure functions over the bytes, one per
+// format, each returning the file's polygons or throwing MeshError with the file name and the line
+// or byte offset. The loader (mesh.cpp) turns polygons into a Mesh; nothing else reads the files.
 //
-// OpenMesh's readers are not written for hostile input: its PLY header parser loops forever at
-// the end of a file whose header never ends, indexes the element list before any element exists
-// (a "property" line first: a crash), and its PLY and OFF body readers reserve whatever counts the
-// header claims and, once a number fails to parse, go on "reading" zeros for as many elements and
-// list entries as claimed (4e9 of them: a hang that ends in std::bad_alloc). So every format is
-// checked here first, as pure functions over the bytes, each throwing MeshError with the file name
-// and the line or byte offset:
-//   - OBJ and STL: every line or triangle is checked, then OpenMesh reads the file (checkObj,
-//     checkStl);
-//   - PLY and OFF: read here outright (parsePly, parseOff) into `Polygons`, which the loader hands
-//     to OpenMesh through its importer. Validating them for OpenMesh would take the same walk (a
-//     binary face's list size says where the next face starts, so checking the indices means
-//     decoding every value) and would then have to refuse what OpenMesh mis-reads on top (lists
-//     in binary custom properties, whitespace before "end_header", the OFF layout taken from a
-//     file name); reading them here is the smaller and the stricter program;
-//   - OM: read here too (parseOm): OpenMesh's OMReader reserves what the header and chunks claim,
-//     trusts every topology index (a damaged file ended in a double free or a segmentation
-//     fault), so the halfedge topology is range-checked and each face's loop walked here, and
-//     the chunks we do not use (normals, colours, texture coordinates, status, custom
-//     properties) skipped by their sizes, each checked against the bytes that follow.
+// They are ours, not OpenMesh's, because OpenMesh's readers are not written for hostile input:
+// its PLY header parser loops forever at the end of a file whose header never ends, indexes the
+// element list before any element exists (a "property" line first: a crash), and its PLY and OFF
+// body readers reserve whatever counts the header claims and, once a number fails to parse, go on
+// "reading" zeros for as many elements and list entries as claimed (4e9 of them: a hang that ends
+// in std::bad_alloc); its OBJ reader skips a vertex it cannot read (shifting every later index)
+// and drops faces without a word; its ASCII STL reader reads a cut-off facet as a triangle at the
+// origin; its OMReader trusts every topology index (a damaged file ended in a double free); and
+// all of them report through OpenMesh's global message streams, whose rerouting leaks (its
+// mostream::disconnect erases a target without deleting it). So:
+//   - OBJ (parseObj): positions and faces, every line checked;
+//   - STL (parseStl), ASCII or binary: triangles, corners at one position welded into one vertex;
+//   - PLY and OFF (parsePly, parseOff): reading them here is the smaller and the stricter program
+//     (a binary face's list size says where the next face starts, so checking the indices means
+//     decoding every value);
+//   - OM (parseOm): the halfedge topology range-checked and each face's loop walked; the chunks we
+//     do not use (normals, colours, texture coordinates, status, custom properties) skipped by
+//     their sizes, each checked against the bytes that follow.
 // Every check costs time linear in the file size, and no count is trusted before it is compared
 // with the bytes that must hold it, so no file costs more memory than a small multiple of its size.
 #pragma once
@@ -44,13 +44,6 @@ inline constexpr std::size_t kMaxFaceCorners = 1u << 16;
 // The most vertices or faces a file may declare: indices are 32-bit (Mesh::indices).
 inline constexpr std::uint64_t kMaxElements = 0xffffffffu;
 
-// What a checked file claims, for the loader's checks after OpenMesh has read it.
-struct Declared {
-    std::optional<std::size_t> vertices;
-    std::optional<std::size_t> faces;
-    std::size_t zeroAreaFaces = 0;  // faces the reader drops before the importer sees them
-};
-
 // A mesh as a file holds it: positions, and faces as runs of vertex indices, every index below
 // positions.size() and every face at least 3 corners (the parsers guarantee both).
 struct Polygons {
@@ -62,13 +55,12 @@ struct Polygons {
     std::size_t faceCount() const { return faceStarts.size() - 1; }
 };
 
-// OBJ: every vertex has three numbers, every face index exists and is readable.
-Declared checkObj(std::span<const unsigned char> bytes, const std::string& file);
-// STL, ASCII or binary (`binary` says which): sizes, facets, finite coordinates.
-Declared checkStl(std::span<const unsigned char> bytes, const std::string& file, bool& binary,
-                  std::vector<std::string>& warnings);
+// OBJ: "v" positions and "f" faces (negative indices count back), everything else skipped.
+Polygons parseObj(std::span<const unsigned char> bytes, const std::string& file);
+// STL, ASCII or binary (told apart by the size): triangles over welded corners.
+Polygons parseStl(std::span<const unsigned char> bytes, const std::string& file);
 // OM: the signature, and the header's counts against the file size (parseOm's first step).
-Declared checkOm(std::span<const unsigned char> bytes, const std::string& file);
+void checkOm(std::span<const unsigned char> bytes, const std::string& file);
 
 // PLY, ASCII or binary (either byte order), read whole.
 Polygons parsePly(std::span<const unsigned char> bytes, const std::string& file);

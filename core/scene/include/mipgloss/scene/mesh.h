@@ -1,4 +1,5 @@
-// Triangle meshes: a GL-free value type and import through OpenMesh (OBJ, OFF, PLY, STL, OM).
+// Triangle meshes: a GL-free value type and import of OBJ, OFF, PLY, STL and OM files (our own
+// readers, core/scene/src/mesh_validate.h; OpenMesh writes them).
 //
 // Import always recomputes vertex normals from the faces (area-weighted, computeVertexNormals):
 // STL carries none, OBJ/PLY normals are often missing or inconsistent, and one rule for every
@@ -13,7 +14,7 @@
 //   - vertices no face uses are dropped (they would distort the bounds).
 // Polygons are triangulated as fans. Non-manifold faces (an edge shared by three faces, a pinched
 // vertex) are kept, on the file's own vertices. Vertices keep their file order.
-// Loads may run on any thread; the OpenMesh part of each is serialised (its readers share state).
+// Loads may run on any thread at once; writes are serialised (OpenMesh's writers share state).
 #pragma once
 
 #include "mipgloss/io/file_error.h"
