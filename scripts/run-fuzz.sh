@@ -18,6 +18,7 @@ all=(environment_import mesh_import scene_file library_file)
 targets=("${@:-${all[@]}}")
 
 scripts/install-clang.sh
+source scripts/sanitizer-env.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j"$(nproc)"
 

@@ -33,6 +33,7 @@ esac
 # clang and its sanitizer and libFuzzer runtimes (a recommendation of clang, so named) are not in
 # scripts/install-deps.sh's dev set.
 scripts/install-clang.sh
+source scripts/sanitizer-env.sh
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j"$(nproc)"
 export QT_QPA_PLATFORM=xcb

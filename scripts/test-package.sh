@@ -60,45 +60,12 @@ if [ ${#need[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}"
 fi
 
-# The mirror apt uses here (deb822 .sources or a one-line sources.list), for debootstrap.
-mirror=$(sed -n 's/^URIs:[[:space:]]*\([^[:space:]]*debian\/*\)$/\1/p' /etc/apt/sources.list.d/*.sources 2>/dev/null | head -1)
-[ -n "$mirror" ] || mirror=$(awk '$1 == "deb" && $3 ~ /^bookworm$/ {print $2; exit}' /etc/apt/sources.list 2>/dev/null || true)
-[ -n "$mirror" ] || mirror=http://deb.debian.org/debian
-
-mounted=()
+source scripts/bare-root.sh
 cleanup() {
-  local i
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[$i]}" 2>/dev/null || true; done
+  bare_root_cleanup
   [ -z "${xvfb_pid:-}" ] || kill "$xvfb_pid" 2>/dev/null || true
 }
 trap cleanup EXIT
-
-# A fresh bare root at $roots/$1: a copy of the pristine debootstrap (made once), with the host's
-# apt sources (same mirror, updates and security), its resolver and the kernel file systems.
-fresh_root() {
-  local root=$roots/$1
-  if [ ! -e "$roots/pristine/.complete" ]; then
-    rm -rf "$roots/pristine"
-    echo "test-package: debootstrap --variant=minbase bookworm $mirror"
-    debootstrap --variant=minbase bookworm "$roots/pristine" "$mirror" >"$work/debootstrap.log" 2>&1 ||
-      { tail "$work/debootstrap.log"; exit 1; }
-    touch "$roots/pristine/.complete"
-  fi
-  rm -rf "$root"
-  cp -a "$roots/pristine" "$root"
-  rm -f "$root/.complete"
-  rm -f "$root"/etc/apt/sources.list "$root"/etc/apt/sources.list.d/*
-  cp /etc/apt/sources.list.d/*.sources "$root/etc/apt/sources.list.d/" 2>/dev/null || true
-  cp /etc/apt/sources.list "$root/etc/apt/" 2>/dev/null || true
-  cp -L /etc/resolv.conf "$root/etc/resolv.conf"
-  for fs in proc sys dev dev/pts; do
-    mount --bind "/$fs" "$root/$fs"
-    mounted+=("$root/$fs")
-  done
-  chroot "$root" apt-get update -qq
-}
-in_root() { chroot "$1" env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
-  DEBIAN_FRONTEND=noninteractive bash -c "$2"; }
 
 # --- 1. Build the package from a clean clone in one bare root -----------------------------------
 if [ -z "$deb" ]; then
