@@ -100,7 +100,7 @@ def main():
         ok &= run_case("200 objects (bench-render --objects 200)",
                        [cli, "bench-render", "--objects", "200", "--frames", "2", "--size", "640x480"])
 
-        # A 10 MB scene (format 3, docs: ui/include/mipgloss/ui/scene_file.h): 30 000 objects sharing
+        # A 10 MB scene (format 3, docs: ui/files/include/mipgloss/ui/scene_file.h): 30 000 objects sharing
         # one tetrahedron and one material, each with a 200-byte name.
         tetra = os.path.join(tmp, "tetra.obj")
         with open(tetra, "w") as f:

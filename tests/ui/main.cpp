@@ -1,20 +1,33 @@
-// GoogleTest main for the Qt/OpenGL tests: one QApplication for the whole run, and the OpenGL 4.1
-// core default format set before any context or widget exists.
-#include "mipgloss/ui/gl_format.h"
-
+// GoogleTest main for the UI's tests, one per room (tests/CMakeLists.txt): one application for the
+// whole run, the one the room needs (MIPGLOSS_TEST_APPLICATION): QCoreApplication for the files and
+// documents (no display), QGuiApplication for the renderer, QApplication for the widgets; with
+// OpenGL, the 4.1 core default format set before any context or widget exists.
 #include <gtest/gtest.h>
 
+#include <QStandardPaths>
+
+#if defined(MIPGLOSS_HEADLESS_TESTS)
+#include <QCoreApplication>
+#define MIPGLOSS_TEST_APPLICATION QCoreApplication
+#else
+#include "mipgloss/ui/gl_format.h"
+#if defined(MIPGLOSS_RENDER_TESTS)
+#include <QGuiApplication>
+#define MIPGLOSS_TEST_APPLICATION QGuiApplication
+#else
 #include <QApplication>
+#define MIPGLOSS_TEST_APPLICATION QApplication
+#endif
+#endif
 
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
-#include <QStandardPaths>
 
-// Under AddressSanitizer (the asan preset): no leak check at exit for this binary. Mesa's llvmpipe
-// driver is unloaded before LeakSanitizer runs, so the few hundred bytes it keeps (one realloc
-// and two callocs per process) have no module or function left to suppress them by. ASan still
+// Under AddressSanitizer (the asan preset), with OpenGL: no leak check at exit for this binary.
+// Mesa's llvmpipe driver is unloaded before LeakSanitizer runs, so the few hundred bytes it keeps
+// (one realloc and two callocs per process) have no module or function left to suppress them by. ASan still
 // checks every access of these tests; the core test binaries keep the leak check, and the
 // preset's ASAN_OPTIONS, which do not name detect_leaks, add to this rather than replace it.
 #if defined(__has_feature)
@@ -24,6 +37,9 @@
 #endif
 #if defined(__SANITIZE_ADDRESS__)
 #define MIPGLOSS_UNDER_ASAN 1
+#endif
+#if defined(MIPGLOSS_HEADLESS_TESTS)
+#undef MIPGLOSS_UNDER_ASAN  // no OpenGL here: the leak check stays
 #endif
 #ifdef MIPGLOSS_UNDER_ASAN
 extern "C" const char* __asan_default_options() { return "detect_leaks=0"; }
@@ -48,7 +64,9 @@ int main(int argc, char** argv) {
     exemptChildrenFromLeakCheck();
     // Test discovery at build time runs without a display: listing needs no application.
     if (::testing::GTEST_FLAG(list_tests)) return RUN_ALL_TESTS();
+#if !defined(MIPGLOSS_HEADLESS_TESTS)
     mipgloss::ui::setDefaultSurfaceFormat();
+#endif
     // Library, autosave and recent files go to $HOME/.qttest (QStandardPaths' test mode), never the
     // user's own folders; and $HOME is a fresh folder for this process, because ctest runs each
     // test in its own process, two at a time, and tests that clear or count autosaves and recent
@@ -59,7 +77,7 @@ int main(int argc, char** argv) {
     QStandardPaths::setTestModeEnabled(true);
     int result = 0;
     {
-        QApplication app(argc, argv);
+        MIPGLOSS_TEST_APPLICATION app(argc, argv);
         result = RUN_ALL_TESTS();
     }
     if (ownHome) {

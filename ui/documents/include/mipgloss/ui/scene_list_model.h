@@ -1,7 +1,7 @@
 // The scene's objects as a flat list for views: one row per object, in the document's order.
 //   display/edit      the name (editable: renames the object)
-//   MaterialNameRole  the name of the material the object uses (SceneListDelegate draws it after
-//                     the name, in a quieter colour)
+//   MaterialNameRole  the name of the material the object uses (SceneListDelegate, in the widgets
+//                     room, draws it after the name, in a quieter colour)
 //   check state       visibility (editable)
 //   tooltip           "Gold · λ 3.50 · reflect · 2,256 triangles"
 // Rows follow the document's paired signals (scene_document.h): an added or duplicated object is
@@ -13,7 +13,6 @@
 #pragma once
 
 #include <QAbstractListModel>
-#include <QStyledItemDelegate>
 
 namespace mipgloss::ui {
 
@@ -44,16 +43,6 @@ private:
     void rowChanged(int row);
 
     SceneDocument* document_;
-};
-
-// Draws a row as usual and the material's name after the object's, in the disabled text colour,
-// cut short (…) to the room left; the row's width stays the name's, so a long material name never
-// makes the list scroll sideways.
-class SceneListDelegate : public QStyledItemDelegate {
-    Q_OBJECT
-public:
-    using QStyledItemDelegate::QStyledItemDelegate;
-    void paint(QPainter* painter, const QStyleOptionViewItem& option, const QModelIndex& index) const override;
 };
 
 }  // namespace mipgloss::ui

@@ -12,6 +12,7 @@
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_file.h"
+#include "mipgloss/ui/scene_list_delegate.h"
 #include "mipgloss/ui/scene_list_model.h"
 #include "mipgloss/ui/viewport.h"
 
