@@ -1,6 +1,6 @@
 #include "mipgloss/scene/mesh.h"
 
-#include "mesh_validate.h"
+#include "formats/mesh_formats.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

@@ -1,6 +1,6 @@
 // Hostile mesh files (issue 11): what scripts/fuzz-meshes.sh found crashing or hanging OpenMesh's
 // readers, kept under tests/assets/meshes/hostile/, and the validators of core/scene/src/
-// mesh_validate.h on hand-made headers with the expected message worked out from the bytes.
+// formats/mesh_formats.h on hand-made headers with the expected message worked out from the bytes.
 // OpenMesh's colour vectors (VectorT<unsigned char, 3>) are default-constructed uninitialised, so
 // GCC warns where the OM tests request colours, inside the standard library's headers: only this
 // file's OpenMesh use triggers it.
@@ -8,7 +8,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include "mipgloss/scene/mesh.h"
-#include "mesh_validate.h"
+#include "formats/mesh_formats.h"
 #include "test_support.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>

@@ -1,5 +1,5 @@
 // Triangle meshes: a GL-free value type and import of OBJ, OFF, PLY, STL and OM files (our own
-// readers, core/scene/src/mesh_validate.h; OpenMesh writes them).
+// readers, core/scene/src/formats/mesh_formats.h; OpenMesh writes them).
 //
 // Import always recomputes vertex normals from the faces (area-weighted, computeVertexNormals):
 // STL carries none, OBJ/PLY normals are often missing or inconsistent, and one rule for every

@@ -1,5 +1,6 @@
 // The mesh file readers (internal to mipgloss_scene): pure functions over the bytes, one per
-// format, each returning the file's polygons or throwing MeshError with the file name and the line
+// format and each in its own file here (obj.cpp, stl.cpp, ply.cpp, off.cpp, om.cpp; what they
+// share in reading.h), each returning the file's polygons or throwing MeshError with the file name and the line
 // or byte offset. The loader (mesh.cpp) turns polygons into a Mesh; nothing else reads the files.
 //
 // They are ours, not OpenMesh's, because OpenMesh's readers are not written for hostile input:
