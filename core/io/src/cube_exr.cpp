@@ -3,6 +3,7 @@
 #include "decode.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/colour.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -17,8 +18,6 @@ namespace fs = std::filesystem;
 using namespace io_detail;
 
 namespace {
-
-constexpr float kHalfMax = 65504.0f;
 
 OIIO::TypeDesc pixelType(const ExrWriteOptions& options) {
     return options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
@@ -197,7 +196,7 @@ void writeCubeEnvironmentExr(const MipChain& chain, const fs::path& file, const 
 
 MipChain readCubeEnvironmentExr(const fs::path& file) {
     std::error_code ec;
-    if (!fs::exists(file, ec)) throw EnvError(file, "file not found");
+    if (!fs::exists(file, ec)) throw EnvError(file, kFileNotFound);
     auto in = OIIO::ImageInput::open(file.string());
     if (!in) throw EnvError(file, "not a readable image: " + OIIO::geterror());
     if (!OIIO::Strutil::iequals(in->spec().get_string_attribute("textureformat"), "CubeFace Environment"))

@@ -1,5 +1,6 @@
 #include "mipgloss/io/dds.h"
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/io/cube_exr.h"
 #include "mipgloss/io/import.h"
 
@@ -36,7 +37,6 @@ constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap =
 constexpr std::uint32_t kCaps2CubeMap = 0x200, kCaps2AllFaces = 0xFC00;  // +X -X +Y -Y +Z -Z bits
 constexpr std::uint32_t kDimensionTexture2D = 3, kMiscTextureCube = 0x4;
 constexpr std::uint32_t kAlphaModeOpaque = 3;  // DDS_ALPHA_MODE_OPAQUE: A is always 1
-constexpr float kHalfMax = 65504.0f;
 
 std::uint32_t bytesPerTexel(DdsType type) { return type == DdsType::Half ? 8u : 16u; }
 

@@ -445,7 +445,7 @@ Image readImageFile(const fs::path& file, ImportReport& report, const Progress& 
 Image readImageFile(const fs::path& file, ImportReport& report, const Progress& progress, float p0, float p1,
                     const ChooseStrips& choose, float* maxFinite) {
     std::error_code ec;
-    if (!fs::exists(file, ec)) throw EnvError(file, "file not found");
+    if (!fs::exists(file, ec)) throw EnvError(file, kFileNotFound);
     if (fs::is_directory(file, ec)) throw EnvError(file, "is a directory, expected an image file");
     const auto bytes = fs::file_size(file, ec);
     if (ec) throw EnvError(file, "cannot read the file: " + ec.message());

@@ -104,7 +104,7 @@ ImportedEnvironment loadDirectory(const fs::path& dir, const ImportOptions& opti
 ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& options,
                                     const Progress& progress) {
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw EnvError(path, "file not found");
+    if (!fs::exists(path, ec)) throw EnvError(path, kFileNotFound);
     reportProgress(progress, "import", 0.0f);
     if (fs::is_directory(path, ec)) return loadDirectory(path, options, progress);
 

@@ -192,7 +192,7 @@ Mesh readMeshNamed(std::span<const unsigned char> bytes, const std::string& file
 Mesh loadMesh(const fs::path& path, MeshReport* report) {
     const std::string file = path.string();
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw MeshError(path, "file not found");
+    if (!fs::exists(path, ec)) throw MeshError(path, kFileNotFound);
     if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, expected a mesh file");
     const std::string ext = lowerExtension(path);
     if (std::find(kExtensions.begin(), kExtensions.end(), ext) == kExtensions.end())

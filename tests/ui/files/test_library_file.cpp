@@ -120,7 +120,7 @@ TEST(LibraryFile, MissingFileIsNoSuchFile) {
         ADD_FAILURE() << "no error for a missing library";
     } catch (const LibraryFileError& e) {
         EXPECT_EQ(e.file(), file);
-        EXPECT_EQ(e.reason(), "no such file");
+        EXPECT_EQ(e.reason(), "file not found");
     }
     EXPECT_FALSE(fs::exists(file));
 }

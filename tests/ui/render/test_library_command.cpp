@@ -166,8 +166,8 @@ TEST(LibraryCommand, MistakesExitOneForTheFileAndTwoForUsage) {
         {{"library", "remove", q(lib), "chrome"}, 1, lib.string() + ": no material named \"chrome\""},
         {{"library", "rename", q(lib), "chrome", "steel"}, 1, lib.string() + ": no material named \"chrome\""},
         {{"library", "rename", q(lib), "mirror", "diffuse"}, 1, lib.string() + ": a material named \"diffuse\""},
-        {{"library", "list", q(dir / "absent.json")}, 1, (dir / "absent.json").string() + ": no such file"},
-        {{"library", "remove", q(dir / "absent.json"), "x"}, 1, "absent.json: no such file"},
+        {{"library", "list", q(dir / "absent.json")}, 1, (dir / "absent.json").string() + ": file not found"},
+        {{"library", "remove", q(dir / "absent.json"), "x"}, 1, "absent.json: file not found"},
         // The command line: exit 2, the flag named.
         {{"library", "add", q(lib), "--name", "x", "--lambda", "9"}, 2, "--lambda needs a number from 0"},
         {{"library", "add", q(lib), "--name", "x", "--lambda", "nan"}, 2, "--lambda"},

@@ -85,7 +85,7 @@ MaterialLibrary libraryFromJson(const QByteArray& json, const fs::path& file, Li
 
 MaterialLibrary loadLibrary(const fs::path& file, LibraryFileReport* report) {
     std::error_code ec;
-    if (!fs::exists(file, ec)) throw LibraryFileError(file, "no such file");
+    if (!fs::exists(file, ec)) throw LibraryFileError(file, kFileNotFound);
     if (fs::is_directory(file, ec)) throw LibraryFileError(file, "is a folder, not a library file");
     QFile in(QString::fromStdString(file.string()));
     if (!in.open(QIODevice::ReadOnly)) throw LibraryFileError(file, "cannot read: " + in.errorString().toStdString());

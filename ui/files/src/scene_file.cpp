@@ -320,7 +320,7 @@ void saveScene(const Scene& scene, const fs::path& file) {
 
 Scene loadScene(const fs::path& file, SceneFileReport* report) {
     QFile in(QString::fromStdString(file.string()));
-    if (!in.exists()) throw SceneFileError(file, "no such file");
+    if (!in.exists()) throw SceneFileError(file, kFileNotFound);
     if (!in.open(QIODevice::ReadOnly))
         throw SceneFileError(file, "cannot read: " + in.errorString().toStdString());
     return sceneFromJson(in.readAll(), file, report);

@@ -1,5 +1,6 @@
 #include "mipgloss/ui/renderer.h"
 
+#include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
 
 #include <QFile>
@@ -22,9 +23,6 @@
 namespace mipgloss::ui {
 
 namespace {
-
-// Largest finite half float: HDR values above it (a sanitised +Inf) would become Inf in RGB16F.
-constexpr float kHalfMax = 65504.0f;
 
 struct GpuMesh {
     std::weak_ptr<const Mesh> source;

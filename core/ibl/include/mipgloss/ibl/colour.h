@@ -23,4 +23,8 @@ inline double linearToSrgb(double linear) {
 // Luminance of a linear Rec. 709 colour.
 inline double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
+// The largest finite IEEE half float: what a half-float file, texture or render target can hold.
+// Every writer and upload that stores half clamps to it (cube EXR, DDS, the renderer's uploads).
+inline constexpr float kHalfMax = 65504.0f;
+
 }  // namespace mipgloss

@@ -21,4 +21,7 @@ private:
     std::string reason_;
 };
 
+// The one reason given for a file that is not there, whatever kind of file it is.
+inline const std::string kFileNotFound = "file not found";
+
 }  // namespace mipgloss

@@ -46,7 +46,7 @@ QByteArray libraryToJson(const MaterialLibrary& library);
 MaterialLibrary libraryFromJson(const QByteArray& json, const std::filesystem::path& file,
                                 LibraryFileReport* report = nullptr);
 
-// Throws LibraryFileError (including "no such file").
+// Throws LibraryFileError (including kFileNotFound, mipgloss/io/file_error.h).
 MaterialLibrary loadLibrary(const std::filesystem::path& file, LibraryFileReport* report = nullptr);
 // Atomic; creates the folder if missing. Refuses (LibraryFileError, the file untouched) a library
 // that would not load again: an invalid or repeated name, an absurd λ or tint. Throws
