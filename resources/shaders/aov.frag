@@ -24,13 +24,13 @@ void main() {
     vec3 n = normalize(vNormal);
     vec3 v = normalize(uCameraPosition - vWorldPosition);
     if (!gl_FrontFacing) n = -n;
-    vec3 direction = normalize(uEnvironmentRotation * (uLookup == 0 ? reflect(-v, n) : n));
-    float exponent = uLookup == 2 ? 1.0 : uExponent;
+    vec3 direction = normalize(uEnvironmentRotation * (uLookup == LOOKUP_REFLECT ? reflect(-v, n) : n));
+    float exponent = uLookup == LOOKUP_IRRADIANCE ? 1.0 : uExponent;
     // Exact where the value is one lobe read at one direction with no footprint widening it:
     // from the lobe cube (or the irradiance map, or the mirror level) with the GPU reading its
     // base level (footprint LOD <= 0), never through the grazing option's per-fragment blend.
     bool exact = false;
-    if (uLookup == 2) {
+    if (uLookup == LOOKUP_IRRADIANCE) {
         exact = textureQueryLod(uIrradiance, direction).y <= 0.0;
     } else if (!uSharperAtGrazing) {
         if (uUseLobe)

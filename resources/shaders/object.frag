@@ -13,7 +13,7 @@ uniform samplerCube uLobe;         // unit 2: the material's lobe cube, when uUs
 uniform vec3 uCameraPosition;
 uniform mat3 uEnvironmentRotation;  // world direction -> environment direction
 uniform vec3 uTint;
-uniform int uLookup;       // 0 reflection vector, 1 normal, 2 normal into the irradiance map
+uniform int uLookup;       // LOOKUP_REFLECT, LOOKUP_NORMAL or LOOKUP_IRRADIANCE (lookup_plan.h)
 uniform bool uUseLobe;
 uniform bool uSharperAtGrazing;
 uniform float uLambda;       // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
@@ -27,10 +27,10 @@ void main() {
     vec3 v = normalize(uCameraPosition - vWorldPosition);
     // Open meshes (the teapot's lid gap) show their inside: light it with the inward normal.
     if (!gl_FrontFacing) n = -n;
-    vec3 direction = uEnvironmentRotation * (uLookup == 0 ? reflect(-v, n) : n);
+    vec3 direction = uEnvironmentRotation * (uLookup == LOOKUP_REFLECT ? reflect(-v, n) : n);
 
     vec3 colour;
-    if (uLookup == 2) {
+    if (uLookup == LOOKUP_IRRADIANCE) {
         colour = texture(uIrradiance, direction).rgb;
     } else if (uSharperAtGrazing) {
         // λ falls to 0 as the view grazes the surface, with Schlick's (1 - cos θ)^5 weight: the

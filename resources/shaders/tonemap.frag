@@ -2,13 +2,13 @@
 // Linear HDR -> display: exposure, a tone map, then the exact sRGB encoding (IEC 61966-2-1).
 uniform sampler2D uHdr;
 uniform float uExposure;  // 2^EV
-uniform int uToneMap;     // 0 linear (clipped), 1 Reinhard, 2 ACES (Narkowicz 2015 fit)
+uniform int uToneMap;     // TONE_MAP_LINEAR (clipped), _REINHARD, _ACES (Narkowicz 2015 fit)
 
 layout(location = 0) out vec4 fragColour;
 
 vec3 toneMap(vec3 x) {
-    if (uToneMap == 1) return x / (1.0 + x);
-    if (uToneMap == 2) return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    if (uToneMap == TONE_MAP_REINHARD) return x / (1.0 + x);
+    if (uToneMap == TONE_MAP_ACES) return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
     return clamp(x, 0.0, 1.0);
 }
 

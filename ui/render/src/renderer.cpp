@@ -2,6 +2,7 @@
 
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/lookup_plan.h"
 
 #include <QFile>
 #include <QOpenGLContext>
@@ -150,35 +151,32 @@ struct Renderer::Impl {
             }
             const GpuMesh& mesh = gpuMesh(object.mesh);
             const Material& m = scene.materialOf(object);
-            const float lambda = isValidLambda(m.lambda) ? m.lambda : 0.0f;
-            int lookup = m.mode == LookupMode::Reflect ? 0 : 1;
-            if (lookup == 1 && m.useIrradiance && irradianceReady) lookup = 2;
-            const GpuLobe* lobe = lookup != 2 && lambda > 0.0f && !m.sharperAtGrazing ? lobeFor(lambda) : nullptr;
+            const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
+            const GpuLobe* lobe = plan.wantsLobeCube ? lobeFor(plan.lambda) : nullptr;
             const glm::mat4 model = object.transform.matrix();
             const glm::mat3 rotation =
                 glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
             gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
             gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
             gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
-            gl->glUniform1i(locLookup, lookup);
-            gl->glUniform1i(locGrazing, m.sharperAtGrazing && lookup != 2 ? 1 : 0);
-            gl->glUniform1f(locLambda, lambda);
+            gl->glUniform1i(locLookup, static_cast<int>(plan.lookup));
+            gl->glUniform1i(locGrazing, plan.sharperAtGrazing ? 1 : 0);
+            gl->glUniform1f(locLambda, plan.lambda);
             gl->glUniform1i(locUseLobe, lobe ? 1 : 0);
             gl->glUniform1i(locLobeExact, lobe && lobe->source->holdsLobe ? 1 : 0);
-            gl->glUniform1f(locExponent, static_cast<float>(lambdaToExponent(lambda)));
+            gl->glUniform1f(locExponent, static_cast<float>(plan.exponent));
             if (lobe) bindLobe(*lobe);
             // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
             // level standing in for the material's lobe; a mirror reads the mirror texture.
-            const bool mirror = lambda <= 0.0f && lookup != 2;
-            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, mirror ? mirrorTexture : environmentTexture);
-            gl->glBindSampler(0, sampler(m.sharperAtGrazing || mirror ? 0.0f : chainLevel(lambda)));
+            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, plan.mirror ? mirrorTexture : environmentTexture);
+            gl->glBindSampler(0, sampler(plan.minLevel));
             gl->glBindVertexArray(mesh.vao);
             gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
             if (aov) continue;
             ++counters.objectsDrawn;
             ++counters.drawCalls;
             if (lobe) ++counters.objectsSettled;
-            else if (lookup != 2 && lambda > 0.0f) ++counters.objectsFromChain;
+            else if (plan.readsChainForLobe()) ++counters.objectsFromChain;
         }
     }
 
@@ -326,11 +324,23 @@ bool Renderer::isInitialized() const { return impl_->gl != nullptr; }
 bool Renderer::hasEnvironment() const { return impl_->environmentTexture != 0 && impl_->environment; }
 
 namespace {
+// A shader's source with the C++ enums' GLSL names (lookup_plan.h, shaderDefines) after its
+// #version line; empty when the resource is missing.
+QByteArray shaderSource(const char* path) {
+    QFile file(QString::fromUtf8(path));
+    if (!file.open(QIODevice::ReadOnly)) return {};
+    QByteArray source = file.readAll();
+    const qsizetype versionEnd = source.indexOf('\n') + 1;
+    // #line keeps the compiler's line numbers those of the file.
+    source.insert(versionEnd, QByteArray::fromStdString(shaderDefines() + "#line 2\n"));
+    return source;
+}
+
 std::unique_ptr<QOpenGLShaderProgram> buildProgram(const char* vertexPath, const char* fragmentPath,
                                                    std::string* error) {
     auto program = std::make_unique<QOpenGLShaderProgram>();
-    if (!program->addCacheableShaderFromSourceFile(QOpenGLShader::Vertex, vertexPath) ||
-        !program->addCacheableShaderFromSourceFile(QOpenGLShader::Fragment, fragmentPath) ||
+    if (!program->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, shaderSource(vertexPath)) ||
+        !program->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, shaderSource(fragmentPath)) ||
         !program->link()) {
         if (error)
             *error = std::string("shader ") + fragmentPath + ": " + program->log().toStdString();

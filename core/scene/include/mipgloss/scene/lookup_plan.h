@@ -1,0 +1,43 @@
+// How the GPU reads the environment for one object, decided here without OpenGL so it is tested
+// headless; the renderer (ui/render/src/renderer.cpp) only binds what planLookup returns. And the
+// GLSL names of the values the shaders take from C++ (the lookup, the tone map), written once:
+// shaderDefines() is put after each shader's #version line.
+#pragma once
+
+#include "mipgloss/scene/scene.h"
+
+#include <string>
+
+namespace mipgloss {
+
+// What the shaders look the environment up by (object.frag, aov.frag: uLookup).
+enum class ShaderLookup : int {
+    Reflect = 0,     // the reflection vector, into the chain or the lobe cube
+    Normal = 1,      // the normal, into the chain or the lobe cube
+    Irradiance = 2,  // the normal, into the irradiance map (E/π)
+};
+
+struct ObjectLookup {
+    ShaderLookup lookup = ShaderLookup::Reflect;
+    float lambda = 0.0f;            // the material's λ; 0 (a mirror) when it is not a valid λ
+    double exponent = 1.0;          // its Phong exponent n(λ) (phong.h)
+    bool sharperAtGrazing = false;  // λ per fragment from the view angle (object.frag)
+    bool wantsLobeCube = false;     // read the material's own lobe cube once one is ready (lobes.h)
+    bool mirror = false;            // read the mirror texture (λ = 0)
+    // The sampler's GL_TEXTURE_MIN_LOD on the chain: the chain level standing in for the lobe
+    // (phong.h, chainLevelForExponent); 0 for a mirror and for the per-fragment λ, whose shader
+    // picks its own level.
+    float minLevel = 0.0f;
+
+    // Whether the chain stands in for the lobe when no lobe cube is bound (a glossy lookup).
+    bool readsChainForLobe() const { return lookup != ShaderLookup::Irradiance && lambda > 0.0f; }
+};
+
+// `irradianceReady`: the environment's irradiance map is on the GPU; `chainFaceSize`: the chain's
+// base face size.
+ObjectLookup planLookup(const Material& material, bool irradianceReady, int chainFaceSize);
+
+// "#define LOOKUP_REFLECT 0" ... and "#define TONE_MAP_LINEAR 0" ..., one line each.
+std::string shaderDefines();
+
+}  // namespace mipgloss

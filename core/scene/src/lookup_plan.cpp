@@ -1,0 +1,38 @@
+#include "mipgloss/scene/lookup_plan.h"
+
+#include "mipgloss/ibl/phong.h"
+
+namespace mipgloss {
+
+ObjectLookup planLookup(const Material& material, bool irradianceReady, int chainFaceSize) {
+    ObjectLookup plan;
+    plan.lambda = isValidLambda(material.lambda) ? material.lambda : 0.0f;
+    plan.exponent = lambdaToExponent(plan.lambda);
+    plan.lookup = material.mode == LookupMode::Reflect ? ShaderLookup::Reflect : ShaderLookup::Normal;
+    if (plan.lookup == ShaderLookup::Normal && material.useIrradiance && irradianceReady)
+        plan.lookup = ShaderLookup::Irradiance;
+    const bool chainOrLobe = plan.lookup != ShaderLookup::Irradiance;
+    plan.sharperAtGrazing = material.sharperAtGrazing && chainOrLobe;
+    plan.mirror = plan.lambda <= 0.0f && chainOrLobe;
+    plan.wantsLobeCube = chainOrLobe && plan.lambda > 0.0f && !material.sharperAtGrazing;
+    plan.minLevel = material.sharperAtGrazing || plan.mirror
+                        ? 0.0f
+                        : static_cast<float>(chainLevelForExponent(plan.exponent, chainFaceSize));
+    return plan;
+}
+
+std::string shaderDefines() {
+    std::string text;
+    auto define = [&](const char* name, int value) {
+        text += "#define " + std::string(name) + " " + std::to_string(value) + "\n";
+    };
+    define("LOOKUP_REFLECT", static_cast<int>(ShaderLookup::Reflect));
+    define("LOOKUP_NORMAL", static_cast<int>(ShaderLookup::Normal));
+    define("LOOKUP_IRRADIANCE", static_cast<int>(ShaderLookup::Irradiance));
+    define("TONE_MAP_LINEAR", static_cast<int>(ToneMap::Linear));
+    define("TONE_MAP_REINHARD", static_cast<int>(ToneMap::Reinhard));
+    define("TONE_MAP_ACES", static_cast<int>(ToneMap::Aces));
+    return text;
+}
+
+}  // namespace mipgloss
