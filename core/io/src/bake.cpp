@@ -1,5 +1,6 @@
 #include "mipgloss/io/bake.h"
 
+#include "mipgloss/io/atomic_write.h"
 #include "mipgloss/io/cube_exr.h"
 #include "mipgloss/io/dds.h"
 
@@ -51,17 +52,6 @@ std::string jsonEscape(const std::string& s) {
         }
     }
     return out;
-}
-
-// A fresh sibling of `target` that does not exist yet.
-fs::path temporarySibling(const fs::path& target, const char* tag) {
-    std::random_device rd;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        fs::path p = target;
-        p += std::string(".") + tag + "-" + std::to_string(rd() % 1000000);
-        if (!fs::exists(p)) return p;
-    }
-    throw EnvError(target, "cannot find a free temporary name beside it");
 }
 
 // A file in the staging folder named as it would have been in the output folder, for messages (the
@@ -270,7 +260,7 @@ BakeSummary bake(const BakeRequest& request) {
     summary.ddsType = request.ddsType;
     summary.irradiance = request.irradiance;
     summary.cubeFile = out / (request.format == BakeFormat::Exr ? "environment_mips.exr" : "environment_mips.dds");
-    const fs::path staging = temporarySibling(out, "partial");
+    const fs::path staging = temporaryBeside(out, "partial");
     try {
         fs::create_directories(staging);
         // One writer per file, the largest first so that the pool ends together. Each owns its
@@ -318,7 +308,7 @@ BakeSummary bake(const BakeRequest& request) {
         // Swap the finished directory into place; the old one survives until the new one is there.
         fs::path old;
         if (fs::exists(out)) {
-            old = temporarySibling(out, "old");
+            old = temporaryBeside(out, "old");
             fs::rename(out, old);
         }
         fs::rename(staging, out, ec);
@@ -330,7 +320,7 @@ BakeSummary bake(const BakeRequest& request) {
     } catch (const fs::filesystem_error& e) {
         removeQuietly(staging);
         throw EnvError(e.path1().empty() ? out : inOutput(e.path1(), staging, out), e.code().message());
-    } catch (const EnvError& e) {
+    } catch (const FileError& e) {
         removeQuietly(staging);
         throw EnvError(inOutput(e.file(), staging, out), e.reason());
     } catch (...) {

@@ -1,10 +1,13 @@
 #include "mipgloss/io/dds.h"
 
 #include "mipgloss/ibl/colour.h"
+#include "mipgloss/io/atomic_write.h"
 #include "mipgloss/io/cube_exr.h"
 #include "mipgloss/io/import.h"
 
 #include <OpenImageIO/imageio.h>
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -78,17 +81,6 @@ std::vector<unsigned char> headerBytes(int size, int levels, DdsType type) {
     return h;
 }
 
-// A fresh name beside `file` for writing it before the rename.
-fs::path temporaryBeside(const fs::path& file) {
-    std::random_device rd;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        fs::path p = file;
-        p += ".partial-" + std::to_string(rd() % 1000000);
-        if (!fs::exists(p)) return p;
-    }
-    throw EnvError(file, "cannot find a free temporary name beside it");
-}
-
 // One level of one face as RGBA texels in the file's type.
 void packFace(const CubeMap& c, Face f, DdsType type, std::vector<unsigned char>& out) {
     const int m = c.size();
@@ -124,31 +116,30 @@ bool parseDdsType(const std::string& name, DdsType& out) {
 void writeCubeDds(const MipChain& chain, const fs::path& file, DdsType type) {
     prepareChainFile(chain, file);
     const int n = chain.baseSize();
-    const fs::path partial = temporaryBeside(file);
-    FILE* f = std::fopen(partial.c_str(), "wb");
-    if (!f) throw EnvError(file, "cannot be created: " + std::error_code(errno, std::generic_category()).message());
-    bool ok = true;
-    const std::vector<unsigned char> header = headerBytes(n, chain.levelCount(), type);
-    ok = std::fwrite(header.data(), 1, header.size(), f) == header.size();
-    std::vector<unsigned char> face;
-    // Direct3D's order: each face (array slice) with its whole mip chain, then the next face.
-    for (Face fc : kAllFaces)
-        for (const CubeMap& level : chain.levels) {
-            if (!ok) break;
-            packFace(level, fc, type, face);
-            ok = std::fwrite(face.data(), 1, face.size(), f) == face.size();
+    writeAtomically(file, [&](int fd) {
+        const int own = ::dup(fd);  // fclose closes it, not the atomic write's descriptor
+        FILE* f = own >= 0 ? ::fdopen(own, "wb") : nullptr;
+        if (!f) {
+            const int error = errno;
+            if (own >= 0) ::close(own);
+            throw EnvError(file, "cannot be created: " + std::error_code(error, std::generic_category()).message());
         }
-    const int writeErrno = ok ? 0 : errno;
-    if (std::fclose(f) != 0 && ok) ok = false;
-    std::error_code ec;
-    if (ok) fs::rename(partial, file, ec);
-    if (!ok || ec) {
-        std::error_code ignored;
-        fs::remove(partial, ignored);
-        const std::string why = ec ? ec.message()
-                                   : std::error_code(writeErrno ? writeErrno : EIO, std::generic_category()).message();
-        throw EnvError(file, "could not be written: " + why);
-    }
+        const std::vector<unsigned char> header = headerBytes(n, chain.levelCount(), type);
+        bool ok = std::fwrite(header.data(), 1, header.size(), f) == header.size();
+        std::vector<unsigned char> face;
+        // Direct3D's order: each face (array slice) with its whole mip chain, then the next face.
+        for (Face fc : kAllFaces)
+            for (const CubeMap& level : chain.levels) {
+                if (!ok) break;
+                packFace(level, fc, type, face);
+                ok = std::fwrite(face.data(), 1, face.size(), f) == face.size();
+            }
+        const int writeErrno = ok ? 0 : errno;
+        if (std::fclose(f) != 0 && ok) ok = false;
+        if (!ok)
+            throw EnvError(file, "could not be written: " +
+                                     std::error_code(writeErrno ? writeErrno : EIO, std::generic_category()).message());
+    });
 }
 
 DdsCube readCubeDds(const fs::path& file) {

@@ -34,13 +34,13 @@ namespace fs = std::filesystem;
 
 QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 
-// Files in `dir` other than `keep`; each must be a QSaveFile temporary of `keep` ("<keep>.XXXXXX",
-// the pattern QTemporaryFile fills), which nothing ever reads as a library: readers open the
-// library's own name only.
+// Files in `dir` other than `keep`; each must be a temporary of the atomic write
+// ("<keep>.partial-N", mipgloss/io/atomic_write.h: temporaryBeside), which nothing ever reads as a
+// library: readers open the library's own name only.
 std::vector<std::string> strayFiles(const fs::path& dir, const std::string& keep) {
     std::vector<std::string> strays;
     const QRegularExpression temporary(QRegularExpression::anchoredPattern(
-        QRegularExpression::escape(QString::fromStdString(keep)) + "\\.[A-Za-z0-9]{6}"));
+        QRegularExpression::escape(QString::fromStdString(keep)) + "\\.partial-[0-9]{1,6}"));
     for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
         const std::string name = e.path().filename().string();
         if (name == keep) continue;
@@ -111,7 +111,7 @@ TEST(LibraryKill, WriterKilledAtRandomMomentsLeavesAVersionItWrote) {
     }
     ASSERT_FALSE(previous.isEmpty()) << "no save completed in " << kRuns << " runs";
     std::printf("[ LibraryKill ] writer: %d kills; the file changed in %d, %zu distinct lengths (%d to %d "
-                "materials), %d kills left a QSaveFile temporary (%zu in all)\n",
+                "materials), %d kills left a temporary of the atomic write (%zu in all)\n",
                 kRuns, changed, lengths.size(), *lengths.begin(), *lengths.rbegin(), leftTemporary, strays.size());
 }
 
@@ -208,7 +208,7 @@ TEST(LibraryKill, CliAddKilledAtRandomMomentsKeepsEveryFinishedAdd) {
         strays.insert(now.begin(), now.end());
     }
     std::printf("[ LibraryKill ] library add: a run takes %.1f ms here; of %d runs %d finished before the kill, "
-                "%d were killed before their save landed and %d after it; %zu QSaveFile temporaries left\n",
+                "%d were killed before their save landed and %d after it; %zu temporaries of the atomic write left\n",
                 runMicroseconds / 1000.0, kKills, finishedFirst, killedBefore, killedAfter, strays.size());
 }
 

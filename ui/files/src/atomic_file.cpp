@@ -1,26 +1,25 @@
 #include "mipgloss/ui/atomic_file.h"
 
-#include <QDir>
-#include <QFileInfo>
-#include <QSaveFile>
+#include "mipgloss/io/atomic_write.h"
+
+#include <QFile>
 
 namespace mipgloss::ui {
 
 void writeFileAtomically(const std::filesystem::path& file, const std::function<bool(QIODevice&)>& write) {
-    const QString path = QString::fromStdString(file.string());
-    const QString folder = QFileInfo(path).absolutePath();
-    if (!QDir().mkpath(folder)) throw FileError(file, "cannot create the folder " + folder.toStdString());
-    QSaveFile out(path);
-    // QSaveFile renames over the target; never fall back to writing it in place.
-    out.setDirectWriteFallback(false);
-    if (!out.open(QIODevice::WriteOnly)) throw FileError(file, "cannot write: " + out.errorString().toStdString());
-    if (!write(out)) {
-        out.cancelWriting();
-        throw FileError(file, "cannot write: " + (out.errorString().isEmpty()
-                                                      ? std::string("the data could not be encoded")
-                                                      : out.errorString().toStdString()));
-    }
-    if (!out.commit()) throw FileError(file, "cannot write: " + out.errorString().toStdString());
+    mipgloss::writeAtomically(file, [&](int fd) {
+        QFile out;  // on the atomic write's descriptor, which it leaves open (DontCloseHandle)
+        if (!out.open(fd, QIODevice::WriteOnly, QFileDevice::DontCloseHandle))
+            throw FileError(file, "cannot write: " + out.errorString().toStdString());
+        const bool written = write(out) && out.flush();
+        if (!written || out.error() != QFileDevice::NoError)
+            throw FileError(file, "cannot write: " + (out.error() == QFileDevice::NoError
+                                                          ? std::string("the data could not be encoded")
+                                                          : out.errorString().toStdString()));
+        out.close();
+        if (out.error() != QFileDevice::NoError)
+            throw FileError(file, "cannot write: " + out.errorString().toStdString());
+    });
 }
 
 void writeFileAtomically(const std::filesystem::path& file, const QByteArray& bytes) {

@@ -1,7 +1,6 @@
-// The one way mipgloss writes a file the user keeps (scenes, libraries, autosaves, exported
-// images): QSaveFile writes a temporary file beside the target and renames it over the target
-// only when everything was written and flushed, so the target is always the old file or the new
-// one, whatever happens in between (an error, a full disk, the process killed).
+// Writing a file the user keeps (scenes, libraries, autosaves, exported images) from Qt: the one
+// atomic write (mipgloss/io/atomic_write.h: a temporary beside the target, flushed, then renamed
+// over it, so the target is always the old file or the new one) with a QIODevice to write into.
 #pragma once
 
 #include "mipgloss/io/file_error.h"
