@@ -12,6 +12,7 @@
 // Timings are printed, never asserted; the tests check correctness (test_latlong.cpp).
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/io/latlong.h"
+#include "latlong_quadrature.h"
 #include "cube_compare.h"
 
 #include <OpenImageIO/imageio.h>

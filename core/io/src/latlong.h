@@ -3,7 +3,7 @@
 // mipgloss/io/latlong.h). Internal to the io library.
 #pragma once
 
-#include "decode.h"
+#include "sanitise.h"
 
 #include <memory>
 #include <span>

@@ -8,6 +8,7 @@
 //  - analytic environments (constant, linear, smooth) and a synthetic sun;
 //  - its own promises: the weighted mean, thread-count independence, progress and cancel.
 #include "mipgloss/io/latlong.h"
+#include "latlong_quadrature.h"
 #include "cube_compare.h"
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/metrics.h"

@@ -66,9 +66,5 @@ CubeMap latLongToCube(const LatLongView& image, int faceSize, const Progress& pr
 enum class LatLongMethod { Scatter, Gather };
 LatLongMethod latLongMethod(int width, int height, int faceSize);
 
-// The conversion mipgloss used before, a gathered stratified quadrature (each texel visits the
-// strata in a conservative (θ, φ) box around it): the same definition of a texel, 10–1000× slower.
-// Kept as the reference that the tests and the benchmark compare latLongToCube with.
-CubeMap latLongToCubeQuadrature(const LatLongView& image, int faceSize);
 
 }  // namespace mipgloss
