@@ -9,6 +9,7 @@
 #include "mipgloss/scene/lobes.h"
 #include "mipgloss/io/image_file.h"
 #include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/placement.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/atomic_file.h"
@@ -192,10 +193,7 @@ int runRender(Args args, const char* argv0) {
             SceneObject object;
             object.name = mesh->name;
             object.meshSource = p.string();
-            // In a row along x, each moved so its bounds' centre sits on the row.
-            const float r = mesh->bounds.radius();
-            object.transform.translation = glm::vec3(cursor + r, 0.0f, 0.0f) - mesh->bounds.centre();
-            cursor += 2.2f * r;
+            object.transform = nextInRow(mesh->bounds, cursor);
             object.mesh = std::move(mesh);
             scene.addObject(std::move(object), Material{});
         }
@@ -359,14 +357,11 @@ int runRenderBench(Args args, const char* argv0) {
     if (meshPath) return benchOneMesh(renderer, *meshPath, frames, width, height);
     Scene scene;
     auto teapot = std::make_shared<const Mesh>(defaultTeapot());
-    const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(objects))));
-    const float spacing = 2.3f * teapot->bounds.radius();
     for (int i = 0; i < objects; ++i) {
         SceneObject o;
         o.name = "teapot " + std::to_string(i);
         o.mesh = teapot;
-        o.transform.translation = glm::vec3(static_cast<float>(i % columns) * spacing,
-                                            static_cast<float>(i / columns) * spacing, 0.0f);
+        o.transform = inGrid(teapot->bounds, i, objects);
         scene.addObject(std::move(o), Material{});
     }
     auto environment = std::make_shared<const PreparedEnvironment>(

@@ -1,5 +1,7 @@
 #include "mipgloss/scene/scene.h"
 
+#include "mipgloss/scene/placement.h"
+
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -80,16 +82,12 @@ Scene makeFigure1Scene() {
                              {"glossy (λ 3.5)", "Polished", 3.5f, LookupMode::Reflect},
                              {"glossy (λ 5)", "Satin", 5.0f, LookupMode::Reflect},
                              {"diffuse (λ 7, normal)", "Matte (normal)", 7.0f, LookupMode::Normal}};
-    // In a row along x, spaced by the teapot's width plus a gap, centred on the origin.
-    const Bounds& b = teapot->bounds;
-    const float spacing = 1.15f * (b.max.x - b.min.x);
     for (int i = 0; i < 4; ++i) {
         SceneObject object;
         object.name = entries[i].name;
         object.mesh = teapot;
         object.meshSource = "builtin:teapot";
-        object.transform.translation =
-            glm::vec3((static_cast<float>(i) - 1.5f) * spacing, 0.0f, 0.0f) - b.centre();
+        object.transform = inCentredRow(teapot->bounds, i, 4);
         Material material;
         material.lambda = entries[i].lambda;
         material.mode = entries[i].mode;

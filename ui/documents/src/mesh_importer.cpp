@@ -1,6 +1,7 @@
 #include "mipgloss/ui/mesh_importer.h"
 
 #include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/placement.h"
 #include "mipgloss/ui/scene_document.h"
 
 #include <QFileInfo>
@@ -45,31 +46,6 @@ MeshImporter::Loaded loadOne(const QString& path) {
 }
 
 }  // namespace
-
-Transform placeBeside(const Scene& scene, const Mesh& mesh) {
-    std::vector<float> radii;
-    for (const SceneObject& o : scene.objects)
-        if (o.visible && o.mesh) radii.push_back(o.worldRadius());
-    Transform t;
-    const float r = mesh.bounds.radius();
-    float typical = 0.0f;
-    if (!radii.empty()) {
-        const auto middle = radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2);
-        std::nth_element(radii.begin(), middle, radii.end());
-        typical = radii[radii.size() / 2];
-    }
-    if (typical > 0.0f && r > 0.0f && (r > 4.0f * typical || r < 0.25f * typical))
-        t.scale = typical / r;
-    const float placedRadius = r * t.scale;
-    glm::vec3 centre(0.0f);
-    if (!radii.empty()) {
-        const Bounds b = sceneBounds(scene);
-        const float gap = 0.2f * (typical > 0.0f ? typical : placedRadius);
-        centre = glm::vec3(b.max.x + gap + placedRadius, b.centre().y, b.centre().z);
-    }
-    t.translation = centre - t.scale * mesh.bounds.centre();
-    return t;
-}
 
 MeshImporter::MeshImporter(SceneDocument* document, QObject* parent) : QObject(parent), document_(document) {}
 
@@ -118,7 +94,7 @@ void MeshImporter::finish(const std::vector<Loaded>& results) {
         Material material;
         material.lambda = kImportedLambda;
         material.mode = LookupMode::Reflect;
-        object.transform = placeBeside(document_->scene(), *r.mesh);
+        object.transform = besideScene(document_->scene(), *r.mesh);
         document_->addObject(std::move(object), material);
         added << tr("%1 (%2 triangles)")
                      .arg(QFileInfo(r.path).fileName())

@@ -1,6 +1,7 @@
 #include "mipgloss/ui/scene_document.h"
 
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/placement.h"
 #include "scene_commands.h"
 
 #include <QUndoStack>
@@ -86,8 +87,7 @@ int SceneDocument::duplicateObject(int index) {
     SceneObject copy = object(index);  // shares the mesh (shared_ptr<const Mesh>) and the material
     const QString text = tr("Duplicate %1").arg(QString::fromStdString(copy.name));
     copy.name += " copy";
-    // Beside the original along +x, 1.2 world bounding diameters away, so the two never overlap.
-    copy.transform.translation.x += 1.2f * 2.0f * copy.worldRadius();
+    copy.transform = besideOriginal(copy);
     pushInsert(index + 1, std::move(copy), std::nullopt, text);
     return index + 1;
 }

@@ -5,12 +5,7 @@
 // looked up by the reflection vector: a plainly glossy start, well inside the filtered levels of
 // any chain of 16² or more. One import (one call, however many files) is one undo step.
 //
-// Placement (placeBeside):
-//   - size: R = the median world radius of the visible objects. A mesh whose radius r is more than
-//     4× larger or smaller than R is scaled by R / r (so a 0.2-unit scan and a 120-unit one both
-//     sit beside teapots); otherwise it keeps its own size. With no visible objects it keeps it.
-//   - place: to the right (+x) of the visible scene's bounds with a gap of 0.2 R (0.2 r when
-//     alone), its centre at the height and depth of the bounds' centre.
+// Each is placed beside the scene (mipgloss/scene/placement.h: besideScene).
 #pragma once
 
 #include "mipgloss/scene/scene.h"
@@ -24,9 +19,6 @@
 namespace mipgloss::ui {
 
 class SceneDocument;
-
-// Where a mesh goes in `scene` (the rule above).
-Transform placeBeside(const Scene& scene, const Mesh& mesh);
 
 class MeshImporter : public QObject {
     Q_OBJECT
