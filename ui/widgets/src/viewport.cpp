@@ -1,5 +1,6 @@
 #include "mipgloss/ui/viewport.h"
 
+#include "mipgloss/scene/picking.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/material_mime.h"
 #include "mipgloss/ui/scene_document.h"
@@ -112,35 +113,8 @@ void Viewport::setShowCounters(bool show) {
 }
 
 int Viewport::pickObject(QPoint position) const {
-    // Ray through the pixel against each object's bounding sphere, nearest hit wins; then the
-    // exact triangles of that candidate set would be the next refinement. Spheres are what the
-    // culling uses too, so what is picked is what could be drawn.
-    const float aspect = height() > 0 ? static_cast<float>(width()) / static_cast<float>(height()) : 1.0f;
     const Scene& scene = document_->scene();
-    const glm::mat4 inverse = glm::inverse(camera_.projection(aspect, sceneBounds(scene)) * camera_.view());
-    const float x = 2.0f * (static_cast<float>(position.x()) + 0.5f) / static_cast<float>(width()) - 1.0f;
-    const float y = 1.0f - 2.0f * (static_cast<float>(position.y()) + 0.5f) / static_cast<float>(height());
-    glm::vec4 nearPoint = inverse * glm::vec4(x, y, -1.0f, 1.0f);
-    glm::vec4 farPoint = inverse * glm::vec4(x, y, 1.0f, 1.0f);
-    const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
-    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
-    int best = -1;
-    float bestDistance = std::numeric_limits<float>::infinity();
-    for (int i = 0; i < document_->objectCount(); ++i) {
-        const SceneObject& object = document_->object(i);
-        if (!object.visible || !object.mesh) continue;
-        const glm::vec3 toCentre = object.worldCentre() - origin;
-        const float along = glm::dot(toCentre, direction);
-        const float radius = object.worldRadius() * 0.8f;  // spheres are loose; favour the centre
-        const float miss2 = glm::dot(toCentre, toCentre) - along * along;
-        if (along <= 0.0f || miss2 > radius * radius) continue;
-        const float distance = along - std::sqrt(radius * radius - miss2);
-        if (distance < bestDistance) {
-            bestDistance = distance;
-            best = i;
-        }
-    }
-    return best;
+    return firstObjectHit(scene, pixelRay(camera_, scene, width(), height(), position.x(), position.y()));
 }
 
 void Viewport::mousePressEvent(QMouseEvent* event) {
