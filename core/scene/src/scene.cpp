@@ -29,6 +29,13 @@ bool parseLookupMode(const std::string& text, LookupMode& out) {
     return false;
 }
 
+bool isValidMaterial(const Material& material) {
+    if (!isValidLambda(static_cast<double>(material.lambda))) return false;
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(material.tint[c]) || material.tint[c] < 0.0f) return false;
+    return true;
+}
+
 const char* toneMapName(ToneMap map) {
     switch (map) {
         case ToneMap::Linear: return "linear";

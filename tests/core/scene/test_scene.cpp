@@ -16,6 +16,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -316,6 +317,24 @@ TEST(PrepareEnvironment, SkippedLevelsAreBoxStepsAndTheFilteredOnesUnchanged) {
                     for (int x = 0; x < got.size(); ++x) differing += got.at(f, x, y) != expected.at(f, x, y);
             EXPECT_EQ(differing, 0) << "level " << k << (k <= through ? " (filtered)" : " (box step)");
         }
+    }
+}
+
+TEST(MaterialValidity, ALambdaInRangeAndAFiniteNonNegativeTint) {
+    EXPECT_TRUE(isValidMaterial(Material{}));
+    Material m;
+    m.lambda = static_cast<float>(kMaxLambda);
+    m.tint = Rgb(0.0f, 2.5f, 1e6f);
+    EXPECT_TRUE(isValidMaterial(m));
+    for (const float lambda : {-0.01f, static_cast<float>(kMaxLambda) + 0.01f, std::nanf("")}) {
+        Material bad;
+        bad.lambda = lambda;
+        EXPECT_FALSE(isValidMaterial(bad)) << lambda;
+    }
+    for (const float c : {-1e-6f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+        Material bad;
+        bad.tint.g = c;
+        EXPECT_FALSE(isValidMaterial(bad)) << c;
     }
 }
 

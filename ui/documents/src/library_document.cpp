@@ -30,15 +30,6 @@ namespace {
 
 QString errorText(const std::exception& e) { return QString::fromStdString(e.what()); }
 
-// What the library files accept (library_file.h), so the document never holds an entry its own
-// file would refuse.
-bool isValidMaterial(const Material& m) {
-    if (!isValidLambda(static_cast<double>(m.lambda))) return false;
-    for (int c = 0; c < 3; ++c)
-        if (!std::isfinite(m.tint[c]) || m.tint[c] < 0.0f) return false;
-    return true;
-}
-
 QString trimmedName(const QString& name) { return name.trimmed(); }
 
 bool isValidName(const std::string& name) { return materialNameProblem(name).empty(); }

@@ -48,6 +48,11 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+// The one rule for what a material may hold: a valid λ (phong.h, isValidLambda) and a tint whose
+// components are finite and not negative (it multiplies linear HDR colour). Files refuse what
+// breaks it, naming the field (material_json); the documents never hold it.
+bool isValidMaterial(const Material& material);
+
 // A scene's materials are named and shared: an object refers to one by id, several objects may
 // refer to the same one, and editing it changes every object that uses it. Ids are unique within a
 // scene and never reused while it is open; names are unique within a scene too (scene files refer
