@@ -25,7 +25,7 @@ fresh_root() {
   local root=$roots/$1
   if [ ! -e "$roots/pristine/.complete" ]; then
     rm -rf "$roots/pristine"
-    echo "bare-root: debootstrap --variant=minbase bookworm $mirror"
+    echo "bare-root: debootstrap --variant=minbase bookworm $mirror" >&2
     debootstrap --variant=minbase bookworm "$roots/pristine" "$mirror" >"$work/debootstrap.log" 2>&1 ||
       { tail "$work/debootstrap.log"; exit 1; }
     touch "$roots/pristine/.complete"
