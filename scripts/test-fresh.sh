@@ -43,12 +43,13 @@ if [ ${#need[@]} -gt 0 ]; then
 fi
 source scripts/bare-root.sh
 
-# A bare root NAME with a clean clone at /root/mipgloss; prints the clone's head.
+# A bare root NAME with a clean clone at /root/mipgloss; sets `head` to the clone's head. (Not
+# in a $(...) subshell: fresh_root's mounts must be recorded in this shell to be undone.)
 root_with_clone() {
   fresh_root "$1"
   in_root "$roots/$1" "apt-get install -y -qq --no-install-recommends git ca-certificates sudo" >"$work/$1-base.log" 2>&1
   git clone --quiet --branch "$branch" "$source_repo" "$roots/$1/root/mipgloss"
-  git -C "$roots/$1/root/mipgloss" log -1 --format='%h %s' | cut -c1-72
+  head=$(git -C "$roots/$1/root/mipgloss" log -1 --format='%h %s' | cut -c1-72)
 }
 
 # Runs COMMAND in the clone of root NAME, its output to build/fresh/NAME.log; sets `status` and `took`.
@@ -59,7 +60,8 @@ run_in() {
   took=$((SECONDS - start))
 }
 
-echo "test-fresh: 1. scripts/run-default.sh in a bare root, clone of $(root_with_clone default)"
+root_with_clone default
+echo "test-fresh: 1. scripts/run-default.sh in a bare root, clone of $head"
 run_in default "MIPGLOSS_NO_WINDOW=1 scripts/run-default.sh"
 verdict "scripts/run-default.sh exits 0" "$status" "exit status $status, ${took} s, log build/fresh/default.log"
 [ "$status" -eq 0 ] || tail -30 "$work/default.log" | sed 's/^/      /'
@@ -69,7 +71,8 @@ verdict "  it wrote the bake (build/default-bake/manifest.json)" \
   "$(holds test -s "$roots/default/root/mipgloss/build/default-bake/manifest.json")"
 cp "$picture" "$work/" 2>/dev/null || true
 
-echo "test-fresh: 2. CI=true bash .ci/run in another bare root, clone of $(root_with_clone tests)"
+root_with_clone tests
+echo "test-fresh: 2. CI=true bash .ci/run in another bare root, clone of $head"
 run_in tests "CI=true bash .ci/run"
 verdict "CI=true bash .ci/run exits 0" "$status" "exit status $status, ${took} s, log build/fresh/tests.log"
 [ "$status" -eq 0 ] || grep -E "FAILED|Failed|failed|ERROR|error:" "$work/tests.log" | tail -30 | sed 's/^/      /'
