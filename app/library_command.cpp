@@ -220,7 +220,7 @@ int thumbnails(Args args, const char* argv0) {
     OffscreenSession session(argv0, "library thumbnails");
     // One prepared environment serves every material (thumbnailNeeds).
     const auto environment = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(settings, ui::thumbnailNeeds(settings.faceSize)));
+        prepareEnvironment(settings, thumbnailNeeds(settings.faceSize)));
     for (const std::string& w : environment->report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
     const std::vector<std::string> names = thumbnailFileNames(library);
     for (std::size_t i = 0; i < library.entries.size(); ++i) {

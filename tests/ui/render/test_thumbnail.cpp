@@ -1,5 +1,5 @@
-// Material thumbnails (thumbnail.h): what thumbnailNeeds asks of the chain, and the pictures: not
-// flat, a mirror unlike a diffuse material, the sphere where the camera says it is.
+// Material thumbnails (thumbnail.h), the pictures: not flat, a mirror unlike a diffuse material,
+// the sphere where the camera says it is. (What they show: tests/core/scene/test_thumbnail_scene.cpp.)
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/chain_needs.h"
@@ -73,7 +73,7 @@ std::shared_ptr<const PreparedEnvironment> thumbnailCourtyard() {
     static const auto env = [] {
         EnvironmentSettings settings;
         settings.faceSize = 64;
-        return std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ui::thumbnailNeeds(64)));
+        return std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, thumbnailNeeds(64)));
     }();
     return env;
 }
@@ -87,36 +87,6 @@ Material diffuse() {
 }
 
 }  // namespace
-
-TEST(ThumbnailNeeds, EveryLambdaIsReadFromFilteredLevelsWithIrradiance) {
-    for (int size : {16, 32, 64, 128, 256, 512}) {
-        const ChainNeeds needs = ui::thumbnailNeeds(size);
-        EXPECT_TRUE(needs.irradiance) << size;
-        EXPECT_EQ(needs.lastFilteredLevel, lastReadLevel(size)) << "face " << size;
-        for (double lambda = 0.0; lambda <= kMaxLambda; lambda += 0.125) {
-            Material m;
-            m.lambda = static_cast<float>(lambda);
-            const ChainNeeds one = chainNeeds(ui::thumbnailScene(m), size);
-            EXPECT_LE(one.lastFilteredLevel, needs.lastFilteredLevel) << "face " << size << " λ " << lambda;
-        }
-    }
-}
-
-TEST(ThumbnailScene, OneSphereInFrontOfABlurredBackground) {
-    Material m;
-    m.lambda = 3.0f;
-    const Scene scene = ui::thumbnailScene(m);
-    ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.materialOf(scene.objects[0]), m);
-    EXPECT_TRUE(scene.display.showBackground);
-    EXPECT_FLOAT_EQ(scene.display.backgroundLambda, 2.0f);
-    // The camera frames the unit sphere inside the square: its silhouette's half-angle is below
-    // half the field of view, and not far below (the sphere fills most of the picture).
-    const OrbitCamera camera = ui::thumbnailCamera();
-    const double halfAngle = std::asin(1.0 / camera.distance) * 180.0 / 3.14159265358979;
-    EXPECT_LT(halfAngle, 0.5 * camera.fovYDegrees);
-    EXPECT_GT(halfAngle, 0.35 * camera.fovYDegrees);
-}
 
 TEST(Thumbnail, IsNotFlatAndAMirrorDiffersFromADiffuseMaterial) {
     std::string error;
