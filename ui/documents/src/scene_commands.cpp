@@ -58,7 +58,7 @@ SetMaterialCommand::SetMaterialCommand(SceneDocument* document, MaterialId id, c
     updateText();
 }
 
-void SetMaterialCommand::apply(const Material& value) { document_->replaceMaterial(material_, value); }
+void SetMaterialCommand::apply(const Material& value) { SceneEdits::replaceMaterial(*document_, material_, value); }
 
 bool SetMaterialCommand::sameTarget(const ReplaceCommand& other) const {
     return static_cast<const SetMaterialCommand&>(other).material_ == material_;
@@ -82,7 +82,7 @@ RenameMaterialCommand::RenameMaterialCommand(SceneDocument* document, MaterialId
     updateText();
 }
 
-void RenameMaterialCommand::apply(const std::string& name) { document_->renameMaterial(material_, name); }
+void RenameMaterialCommand::apply(const std::string& name) { SceneEdits::renameMaterial(*document_, material_, name); }
 
 void RenameMaterialCommand::updateText() {
     setText(tr("Rename material %1 to %2").arg(qstr(before_), qstr(after_)));
@@ -96,15 +96,15 @@ AssignMaterialCommand::AssignMaterialCommand(SceneDocument* document, int index,
 }
 
 void AssignMaterialCommand::redo() {
-    if (added_) document_->insertMaterialAt(document_->scene().materials.size(), *added_);
-    document_->setObjectMaterial(index_, after_);
-    document_->notifyChanged();
+    if (added_) SceneEdits::insertMaterialAt(*document_, document_->scene().materials.size(), *added_);
+    SceneEdits::setObjectMaterial(*document_, index_, after_);
+    SceneEdits::notifyChanged(*document_);
 }
 
 void AssignMaterialCommand::undo() {
-    document_->setObjectMaterial(index_, before_);
-    if (added_) document_->removeMaterial(added_->id);
-    document_->notifyChanged();
+    SceneEdits::setObjectMaterial(*document_, index_, before_);
+    if (added_) SceneEdits::removeMaterial(*document_, added_->id);
+    SceneEdits::notifyChanged(*document_);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -116,7 +116,7 @@ SetTransformCommand::SetTransformCommand(SceneDocument* document, int index, con
     updateText();
 }
 
-void SetTransformCommand::apply(const Transform& value) { document_->replaceTransform(index_, value); }
+void SetTransformCommand::apply(const Transform& value) { SceneEdits::replaceTransform(*document_, index_, value); }
 
 bool SetTransformCommand::sameTarget(const ReplaceCommand& other) const {
     return static_cast<const SetTransformCommand&>(other).index_ == index_;
@@ -136,7 +136,7 @@ SetObjectNameCommand::SetObjectNameCommand(SceneDocument* document, int index, c
     updateText();
 }
 
-void SetObjectNameCommand::apply(const std::string& name) { document_->replaceName(index_, name); }
+void SetObjectNameCommand::apply(const std::string& name) { SceneEdits::replaceName(*document_, index_, name); }
 
 void SetObjectNameCommand::updateText() { setText(tr("Rename %1 to %2").arg(qstr(before_), qstr(after_))); }
 
@@ -145,7 +145,7 @@ SetVisibleCommand::SetVisibleCommand(SceneDocument* document, int index, bool vi
     updateText();
 }
 
-void SetVisibleCommand::apply(const bool& visible) { document_->replaceVisible(index_, visible); }
+void SetVisibleCommand::apply(const bool& visible) { SceneEdits::replaceVisible(*document_, index_, visible); }
 
 void SetVisibleCommand::updateText() { setText((after_ ? tr("Show %1") : tr("Hide %1")).arg(name_)); }
 
@@ -156,16 +156,16 @@ InsertObjectCommand::InsertObjectCommand(SceneDocument* document, int index, Sce
 }
 
 void InsertObjectCommand::redo() {
-    if (added_) document_->insertMaterialAt(document_->scene().materials.size(), *added_);
-    document_->insertObject(index_, object_);
-    document_->notifyChanged();
+    if (added_) SceneEdits::insertMaterialAt(*document_, document_->scene().materials.size(), *added_);
+    SceneEdits::insertObject(*document_, index_, object_);
+    SceneEdits::notifyChanged(*document_);
     document_->setSelected(index_);
 }
 
 void InsertObjectCommand::undo() {
-    document_->takeObject(index_);
-    if (added_) document_->removeMaterial(added_->id);
-    document_->notifyChanged();
+    SceneEdits::takeObject(*document_, index_);
+    if (added_) SceneEdits::removeMaterial(*document_, added_->id);
+    SceneEdits::notifyChanged(*document_);
 }
 
 RemoveObjectCommand::RemoveObjectCommand(SceneDocument* document, int index)
@@ -174,13 +174,13 @@ RemoveObjectCommand::RemoveObjectCommand(SceneDocument* document, int index)
 }
 
 void RemoveObjectCommand::redo() {
-    document_->takeObject(index_);
-    document_->notifyChanged();
+    SceneEdits::takeObject(*document_, index_);
+    SceneEdits::notifyChanged(*document_);
 }
 
 void RemoveObjectCommand::undo() {
-    document_->insertObject(index_, object_);
-    document_->notifyChanged();
+    SceneEdits::insertObject(*document_, index_, object_);
+    SceneEdits::notifyChanged(*document_);
     document_->setSelected(index_);
 }
 
@@ -193,7 +193,7 @@ SetEnvironmentCommand::SetEnvironmentCommand(SceneDocument* document, const Envi
     updateText();
 }
 
-void SetEnvironmentCommand::apply(const EnvironmentSettings& value) { document_->replaceEnvironment(value); }
+void SetEnvironmentCommand::apply(const EnvironmentSettings& value) { SceneEdits::replaceEnvironment(*document_, value); }
 
 void SetEnvironmentCommand::undo() {
     ReplaceCommand::undo();
@@ -224,7 +224,7 @@ SetDisplayCommand::SetDisplayCommand(SceneDocument* document, const DisplaySetti
     updateText();
 }
 
-void SetDisplayCommand::apply(const DisplaySettings& value) { document_->replaceDisplay(value); }
+void SetDisplayCommand::apply(const DisplaySettings& value) { SceneEdits::replaceDisplay(*document_, value); }
 
 void SetDisplayCommand::updateText() {
     ChangedField field(EDIT_TEXT("Change display settings"));

@@ -1,5 +1,5 @@
 // The scene's edits as undo commands (Qt's undoframework example): each keeps the value before
-// and after, and redo()/undo() apply one or the other through SceneDocument's private mutators,
+// and after, and redo()/undo() apply one or the other through SceneEdits (SceneDocument's steps),
 // then emit changed() once. Made only by SceneDocument's public setters (scene_document.h), which
 // push a command only when the edit changes something.
 //
@@ -19,9 +19,35 @@
 #include <QUndoCommand>
 
 #include <optional>
+#include <utility>
 #include <string>
 
 namespace mipgloss::ui {
+
+// The commands' only way to change the document: its steps (scene_document.h, private), each
+// changing the scene and emitting its targeted signals, and notifyChanged (changed(), once per
+// step of the stack).
+struct SceneEdits {
+    static void insertMaterialAt(SceneDocument& d, std::size_t position, const NamedMaterial& material) {
+        d.insertMaterialAt(position, material);
+    }
+    static void removeMaterial(SceneDocument& d, MaterialId id) { d.removeMaterial(id); }
+    static void replaceMaterial(SceneDocument& d, MaterialId id, const Material& material) {
+        d.replaceMaterial(id, material);
+    }
+    static void renameMaterial(SceneDocument& d, MaterialId id, const std::string& name) { d.renameMaterial(id, name); }
+    static void setObjectMaterial(SceneDocument& d, int index, MaterialId id) { d.setObjectMaterial(index, id); }
+    static void replaceTransform(SceneDocument& d, int index, const Transform& t) { d.replaceTransform(index, t); }
+    static void replaceName(SceneDocument& d, int index, const std::string& name) { d.replaceName(index, name); }
+    static void replaceVisible(SceneDocument& d, int index, bool visible) { d.replaceVisible(index, visible); }
+    static void insertObject(SceneDocument& d, int index, SceneObject object) {
+        d.insertObject(index, std::move(object));
+    }
+    static void takeObject(SceneDocument& d, int index) { d.takeObject(index); }
+    static void replaceEnvironment(SceneDocument& d, const EnvironmentSettings& s) { d.replaceEnvironment(s); }
+    static void replaceDisplay(SceneDocument& d, const DisplaySettings& s) { d.replaceDisplay(s); }
+    static void notifyChanged(SceneDocument& d) { d.notifyChanged(); }
+};
 
 // Command ids for QUndoCommand::id(): the kinds that merge, and -1 for those that never do.
 enum SceneCommandId : int {
@@ -43,11 +69,11 @@ public:
         : document_(document), before_(before), after_(after), merge_(merge) {}
     void redo() override {
         apply(after_);
-        document_->notifyChanged();
+        SceneEdits::notifyChanged(*document_);
     }
     void undo() override {
         apply(before_);
-        document_->notifyChanged();
+        SceneEdits::notifyChanged(*document_);
     }
     int id() const override { return Id; }
     bool mergeWith(const QUndoCommand* other) override {

@@ -128,18 +128,9 @@ signals:
     void changed();                        // once per edit, undo or redo, and on reset
 
 private:
-    template <class Value, int Id>
-    friend class ReplaceCommand;
-    friend class SetMaterialCommand;
-    friend class RenameMaterialCommand;
-    friend class AssignMaterialCommand;
-    friend class SetTransformCommand;
-    friend class SetObjectNameCommand;
-    friend class SetVisibleCommand;
-    friend class InsertObjectCommand;
-    friend class RemoveObjectCommand;
-    friend class SetEnvironmentCommand;
-    friend class SetDisplayCommand;
+    // The undo commands' one door to the steps below (scene_commands.h), as LibraryEdits is the
+    // library document's.
+    friend struct SceneEdits;
 
     // The steps commands are made of: change the scene and emit the targeted signals, nothing
     // else (no changed(), no undo step).
