@@ -557,9 +557,8 @@ CubeMap convolveUpsampled(const LobeSource& src, double exponent, int outSize, d
         for (int x = 0; x < e; ++x) bsplineCoefficients(v + x, e, e, scratch);
     });
     CubeMap out(outSize);
-    parallelFor(0, 6 * outSize, [&](int row) {
-        const Face f = kAllFaces[static_cast<std::size_t>(row / outSize)];
-        const int y = row % outSize;
+    parallelFor(0, cubeRows(outSize), [&](int row) {
+        const auto [f, y] = faceRowOf(row, outSize);
         // Output centre (y + 0.5)/outSize on the face is grid coordinate y/2 - 0.25.
         const int gy = (y - (y % 2 == 0 ? 2 : 1)) / 2;  // the grid texel before it
         const auto& wy = kCubicBSpline[static_cast<std::size_t>(y % 2)];
@@ -630,9 +629,8 @@ Rgb ExactLobe::at(const glm::dvec3& direction) const {
 CubeMap convolveExact(const CubeMap& base, double exponent, int outSize, double cutoff) {
     const ExactLobe lobe(base, exponent, cutoff);
     CubeMap out(outSize);
-    parallelFor(0, 6 * outSize, [&](int row) {
-        const Face fo = static_cast<Face>(row / outSize);
-        const int y = row % outSize;
+    parallelFor(0, cubeRows(outSize), [&](int row) {
+        const auto [fo, y] = faceRowOf(row, outSize);
         const FaceFrame& fro = faceFrame(fo);
         for (int x = 0; x < outSize; ++x) {
             const double sc = 2.0 * (x + 0.5) / outSize - 1.0, tc = 2.0 * (y + 0.5) / outSize - 1.0;

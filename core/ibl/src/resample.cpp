@@ -17,9 +17,8 @@ CubeMap resampleCube(const CubeMap& cube, int size) {
         // Growing: bilinear through the borders, so samples near an edge see the neighbour.
         CubeMap src = cube;
         src.makeSeamless();
-        parallelFor(0, 6 * size, [&](int row) {
-            const Face f = kAllFaces[static_cast<std::size_t>(row / size)];
-            const int y = row % size;
+        parallelFor(0, cubeRows(size), [&](int row) {
+            const auto [f, y] = faceRowOf(row, size);
             const float inv = 1.0f / static_cast<float>(size);
             for (int x = 0; x < size; ++x)
                 out.at(f, x, y) = src.sample(f, (static_cast<float>(x) + 0.5f) * inv,
@@ -30,9 +29,8 @@ CubeMap resampleCube(const CubeMap& cube, int size) {
         // texels under its footprint, partial texels weighted by the solid angle of the overlap.
         const double scale = static_cast<double>(n) / size;
         auto plane = [&](double texels) { return 2.0 * texels / n - 1.0; };
-        parallelFor(0, 6 * size, [&](int row) {
-            const Face f = kAllFaces[static_cast<std::size_t>(row / size)];
-            const int y = row % size;
+        parallelFor(0, cubeRows(size), [&](int row) {
+            const auto [f, y] = faceRowOf(row, size);
             const double y0 = y * scale, y1 = (y + 1) * scale;
             for (int x = 0; x < size; ++x) {
                 const double x0 = x * scale, x1 = (x + 1) * scale;

@@ -481,10 +481,9 @@ double gatherReads(int width, int height, int n) {
 void gather(const Source& src, CubeMap& cube, const ProgressSpan& progress) {
     const int n = cube.size();
     const double texel = 2.0 / n;
-    forGroups(6 * n, 20, [&](int row) {
-        const Face f = kAllFaces[static_cast<std::size_t>(row / n)];
+    forGroups(cubeRows(n), 20, [&](int row) {
+        const auto [f, y] = faceRowOf(row, n);
         const FaceFrame& fr = faceFrame(f);
-        const int y = row % n;
         for (int x = 0; x < n; ++x) {
             const double x0 = x * texel - 1.0, y0 = y * texel - 1.0;
             const Reads s = readsPerAxis(fr, x0 + 0.5 * texel, y0 + 0.5 * texel, texel, src.width, src.height);
@@ -1238,9 +1237,8 @@ private:
 
     // Sums to means; a texel that got no stratum (none does at this spacing, strataFor) stays 0.
     void normalise() {
-        parallelFor(0, 6 * n_, [&](int r) {
-            const Face f = kAllFaces[static_cast<std::size_t>(r / n_)];
-            const int y = r % n_;
+        parallelFor(0, cubeRows(n_), [&](int r) {
+            const auto [f, y] = faceRowOf(r, n_);
             for (int x = 0; x < n_; ++x) {
                 const float wt = weight_[(static_cast<std::size_t>(f) * static_cast<std::size_t>(n_) + static_cast<std::size_t>(y)) *
                                              static_cast<std::size_t>(n_) + static_cast<std::size_t>(x)];

@@ -38,6 +38,18 @@ inline constexpr int kFaceCount = 6;
 inline constexpr std::array<Face, 6> kAllFaces{Face::PX, Face::NX, Face::PY,
                                                Face::NY, Face::PZ, Face::NZ};
 
+// The rows of all six faces of a size × size cube as one range, face by face (+X's rows first),
+// for loops that hand out rows: cubeRows(size) of them; faceRowOf(row, size) says which face and
+// which row of it (the one place that decodes the number).
+struct FaceRow {
+    Face face;
+    int y;
+};
+inline constexpr int cubeRows(int size) { return kFaceCount * size; }
+inline FaceRow faceRowOf(int row, int size) {
+    return {kAllFaces[static_cast<std::size_t>(row / size)], row % size};
+}
+
 // Short file-name stem for a face: "px", "nx", "py", "ny", "pz", "nz".
 const char* faceName(Face f);
 
