@@ -53,8 +53,13 @@ root_with_clone() {
 }
 
 # Runs COMMAND in the clone of root NAME, its output to build/fresh/NAME.log; sets `status` and `took`.
+# The root's X servers (xvfb-run -a, from :99 up) share this machine's abstract socket namespace,
+# where an X server of the host on the same number takes their clients: twice a test in the root
+# failed with "could not connect to display :99" while a host xvfb-run ran. Lock files for :99 to
+# :149 in the root's /tmp make its xvfb-run start at :150.
 run_in() {
-  local start=$SECONDS
+  local start=$SECONDS n
+  for n in $(seq 99 149); do : >"$roots/$1/tmp/.X$n-lock"; done
   status=0
   in_root "$roots/$1" "cd /root/mipgloss && $2" >"$work/$1.log" 2>&1 || status=$?
   took=$((SECONDS - start))
