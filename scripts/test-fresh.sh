@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # README's two commands on bare Debian 12 machines, as a new user runs them (issue 22). Not part of
-# CI (it downloads a Debian root and builds everything twice: about 40 minutes on two cores); in
+# CI (it downloads a Debian root and builds everything twice: 20 to 40 minutes on two cores); in
 # scripts/nightly.sh, and run by hand before landing anything that changes an install step, a
 # preset or a dependency. Needs root (debootstrap, chroot, mounts).
 #
