@@ -33,14 +33,7 @@ verdict() {  # verdict NAME STATUS [DETAIL]
   if [ "$2" -eq 0 ]; then echo "PASS  $1${3:+  ($3)}"; else echo "FAIL  $1${3:+  ($3)}"; failures=$((failures + 1)); fi
 }
 
-need=()
-for p in debootstrap git; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
-done
-if [ ${#need[@]} -gt 0 ]; then
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}"
-fi
+scripts/apt-install-missing.sh test-fresh debootstrap git
 source scripts/bare-root.sh
 
 # A bare root NAME with a clean clone at /root/mipgloss; sets `head` to the clone's head. (Not

@@ -51,14 +51,7 @@ check() {  # check NAME COMMAND...: runs the command, prints PASS or FAIL with t
 }
 
 # Host tools.
-need=()
-for p in debootstrap lintian git openimageio-tools xvfb xauth; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
-done
-if [ ${#need[@]} -gt 0 ]; then
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}"
-fi
+scripts/apt-install-missing.sh test-package debootstrap lintian git openimageio-tools xvfb xauth
 
 source scripts/bare-root.sh
 cleanup() {
