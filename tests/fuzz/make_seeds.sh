@@ -102,6 +102,20 @@ cat > $sc/v3-full.mipgloss <<'J'
              {"name": "ball 2", "mesh": "builtin:sphere", "visible": false, "material": "chalk"},
              {"name": "pot", "mesh": "builtin:sphere", "material": "gold"}]}
 J
+cat > $sc/v4-full.mipgloss <<'J'
+{"format": "mipgloss-scene", "version": 4,
+ "environment": {"source": "builtin:courtyard", "layout": "auto", "handedness": "left", "faceSize": 64,
+                 "builder": "phong"},
+ "display": {"showBackground": true, "backgroundLambda": 2.5, "exposureEv": -1, "toneMap": "reinhard", "samples": 4,
+             "environmentRotationDegrees": 30},
+ "materials": [{"name": "gold", "library": "Gold", "lambda": 3, "phongExponent": 767, "mode": "reflect",
+                "useIrradiance": false, "tint": [1, 0.8, 0.3], "sharperAtGrazing": true},
+               {"name": "chalk", "lambda": 7, "mode": "normal", "useIrradiance": true}],
+ "objects": [{"name": "ball", "mesh": "builtin:sphere", "visible": true,
+              "transform": {"translation": [1, 2, 3], "rotationDegrees": [0, 90, 0], "scale": 0.5},
+              "material": "gold"},
+             {"name": "pot", "mesh": "builtin:sphere", "material": "gold"}]}
+J
 cat > $sc/v2-object-materials.json <<'J'
 {"format": "mipgloss-scene", "version": 2, "environment": {"source": "builtin:courtyard"},
  "objects": [{"name": "a", "mesh": "builtin:sphere", "material": {"lambda": 4, "phongExponent": 191, "tint": [0.5, 0.5, 0.5]}},

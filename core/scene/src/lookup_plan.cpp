@@ -21,6 +21,13 @@ ObjectLookup planLookup(const Material& material, bool irradianceReady, int chai
     return plan;
 }
 
+ObjectLookup planBackground(float lambda, int chainFaceSize) {
+    Material seen;
+    seen.lambda = lambda;
+    seen.mode = LookupMode::Reflect;
+    return planLookup(seen, false, chainFaceSize);
+}
+
 std::string shaderDefines() {
     std::string text;
     auto define = [&](const char* name, int value) {

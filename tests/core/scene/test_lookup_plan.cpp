@@ -86,6 +86,22 @@ TEST(LookupPlan, AnInvalidLambdaIsDrawnAsAMirror) {
     }
 }
 
+TEST(LookupPlan, TheBackgroundIsPlannedAsAReflectMaterialOfItsBlur) {
+    for (const float lambda : {0.0f, 0.5f, 3.5f, 7.9f}) {
+        const ObjectLookup background = planBackground(lambda, kFace);
+        const ObjectLookup object = planLookup(material(lambda), true, kFace);
+        EXPECT_EQ(background.lookup, ShaderLookup::Reflect) << lambda;
+        EXPECT_EQ(background.mirror, lambda == 0.0f) << lambda;
+        EXPECT_EQ(background.wantsLobeCube, lambda > 0.0f) << lambda;
+        EXPECT_EQ(background.minLevel, object.minLevel) << lambda;
+        EXPECT_FLOAT_EQ(background.minLevel,
+                        lambda > 0.0f ? static_cast<float>(chainLevelForExponent(lambdaToExponent(lambda), kFace)) : 0.0f);
+    }
+    const ObjectLookup nan = planBackground(std::numeric_limits<float>::quiet_NaN(), kFace);
+    EXPECT_EQ(nan.minLevel, 0.0f);
+    EXPECT_FALSE(nan.wantsLobeCube);
+}
+
 TEST(LookupPlan, ShaderDefinesNameEveryEnumValueTheShadersCompare) {
     const std::string defines = shaderDefines();
     EXPECT_NE(defines.find("#define LOOKUP_REFLECT 0\n"), std::string::npos);

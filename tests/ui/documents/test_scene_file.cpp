@@ -89,7 +89,7 @@ Scene figure1WithBunny() {
     scene.findMaterial(scene.objects.back().material)->libraryEntry = "Velvet";
     scene.environment.builder = Builder::Box;
     scene.environment.faceSize = 64;
-    scene.environment.rotationDegrees = 30.0f;
+    scene.display.environmentRotationDegrees = 30.0f;
     scene.environment.handedness = Handedness::Left;
     scene.display.showBackground = false;
     scene.display.backgroundLambda = 2.5f;
@@ -587,6 +587,37 @@ TEST(SceneFile, OlderVersionsGiveEachObjectAMaterialOfItsOwn) {
     EXPECT_EQ(scene.findMaterial(scene.objects[0].material)->name, "pot");
     EXPECT_EQ(scene.findMaterial(scene.objects[1].material)->name, "pot 2");
     EXPECT_EQ(scene.materialOf(scene.objects[1]).lambda, 3.0f);
+}
+
+// Version 4 keeps the environment's rotation with the display settings (a draw-time view, never a
+// build); versions 1 to 3 kept it with the environment, and it loads from there. Either way it is
+// kept in [−180°, 180°], and a file written now has it only in "display".
+TEST(SceneFile, EnvironmentRotationMovedToTheDisplaySettings) {
+    QTemporaryDir dir;
+    for (int version : {1, 2, 3}) {
+        const Scene old = loadScene(writeScene(dir, "v" + std::to_string(version) + ".json",
+                                               R"({"format": "mipgloss-scene", "version": )" +
+                                                   std::to_string(version) +
+                                                   R"(, "environment": {"rotationDegrees": 400}})"));
+        EXPECT_FLOAT_EQ(old.display.environmentRotationDegrees, 40.0f) << "version " << version;
+    }
+    const Scene current = loadScene(writeScene(dir, "v4.json", R"({"format": "mipgloss-scene", "version": 4,
+        "display": {"environmentRotationDegrees": -190}, "environment": {"rotationDegrees": 99}})"));
+    EXPECT_FLOAT_EQ(current.display.environmentRotationDegrees, 170.0f) << "display's, wrapped; not environment's";
+
+    const fs::path file = fs::path(dir.path().toStdString()) / "saved.json";
+    saveScene(current, file);
+    QFile in(QString::fromStdString(file.string()));
+    ASSERT_TRUE(in.open(QIODevice::ReadOnly));
+    const QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
+    EXPECT_EQ(root.value("version").toInt(), kSceneVersionRotationInDisplay);
+    EXPECT_DOUBLE_EQ(root.value("display").toObject().value("environmentRotationDegrees").toDouble(), 170.0);
+    EXPECT_FALSE(root.value("environment").toObject().contains("rotationDegrees"));
+
+    const std::string notNumber = loadError(dir, "bad.json", R"({"format": "mipgloss-scene", "version": 4,
+        "display": {"environmentRotationDegrees": "east"}})");
+    EXPECT_NE(notNumber.find("bad.json"), std::string::npos) << notNumber;
+    EXPECT_NE(notNumber.find("environmentRotationDegrees"), std::string::npos) << notNumber;
 }
 
 TEST(SceneFile, MaterialNamesMustResolveAndBeUnique) {

@@ -122,11 +122,11 @@ std::vector<Edit> everyKindOfEdit() {
              EnvironmentSettings e = d.scene().environment;
              e.builder = Builder::Box;
              e.faceSize = 64;
-             e.rotationDegrees = 45.0f;
              d.setEnvironment(e);
          }},
         {"display", [](SceneDocument& d) {
              DisplaySettings s = d.scene().display;
+             s.environmentRotationDegrees = 45.0f;
              s.exposureEv = -1.5f;
              s.backgroundLambda = 3.0f;
              s.toneMap = ToneMap::Reinhard;
@@ -205,9 +205,9 @@ TEST(Undo, TextsNameTheEdit) {
     t.translation.x += 1.0f;
     doc.setTransform(0, t);
     EXPECT_EQ(doc.undoStack()->undoText(), QStringLiteral("Move a"));
-    EnvironmentSettings e = doc.scene().environment;
-    e.rotationDegrees = 90.0f;
-    doc.setEnvironment(e);
+    DisplaySettings d = doc.scene().display;
+    d.environmentRotationDegrees = 90.0f;
+    doc.setDisplay(d);
     EXPECT_EQ(doc.undoStack()->undoText(), QStringLiteral("Rotate environment"));
 }
 
@@ -259,12 +259,18 @@ TEST(Undo, EditsWithOneMergeKeyAreOneStep) {
     EXPECT_EQ(stack->count(), 6);
     EXPECT_EQ(doc.scene(), before);
 
-    // Environment and display steps merge the same way (a rotation drag, an exposure box).
+    // Environment and display steps merge the same way (a face size box, a rotation drag).
+    const SceneDocument::MergeKey resize = SceneDocument::newMergeKey();
+    for (int size : {32, 64, 256}) {
+        EnvironmentSettings e = doc.scene().environment;
+        e.faceSize = size;
+        doc.setEnvironment(e, resize);
+    }
     const SceneDocument::MergeKey rotate = SceneDocument::newMergeKey();
     for (int degrees = 1; degrees <= 30; ++degrees) {
-        EnvironmentSettings e = doc.scene().environment;
-        e.rotationDegrees = static_cast<float>(degrees);
-        doc.setEnvironment(e, rotate);
+        DisplaySettings d = doc.scene().display;
+        d.environmentRotationDegrees = static_cast<float>(degrees);
+        doc.setDisplay(d, rotate);
     }
     const SceneDocument::MergeKey expose = SceneDocument::newMergeKey();
     for (float ev : {0.5f, 1.0f, 1.5f}) {
@@ -272,7 +278,8 @@ TEST(Undo, EditsWithOneMergeKeyAreOneStep) {
         d.exposureEv = ev;
         doc.setDisplay(d, expose);
     }
-    EXPECT_EQ(stack->count(), 8);
+    EXPECT_EQ(stack->count(), 9);
+    stack->undo();
     stack->undo();
     stack->undo();
     EXPECT_EQ(doc.scene(), before);
@@ -396,9 +403,7 @@ TEST(Undo, FailedEnvironmentLeavesNoStep) {
     // Edits made while the file was read stay; the open is passed over by Undo.
     doc.setEnvironment(bad);
     doc.setName(0, QStringLiteral("renamed"));
-    EnvironmentSettings failed = bad;
-    failed.rotationDegrees = 0.0f;  // as EnvironmentManager::lastFailure() reports it
-    doc.withdrawFailedEnvironment(failed, drawn);
+    doc.withdrawFailedEnvironment(bad, drawn);
     EXPECT_EQ(doc.scene().environment, drawn);
     EXPECT_EQ(doc.object(0).name, "renamed");
     const Scene afterFailure = doc.scene();
@@ -416,7 +421,7 @@ TEST(Undo, FailedEnvironmentLeavesNoStep) {
     other.faceSize = 256;
     doc.setEnvironment(other);
     const int steps = doc.undoStack()->count();
-    doc.withdrawFailedEnvironment(failed, drawn);
+    doc.withdrawFailedEnvironment(bad, drawn);
     EXPECT_EQ(doc.scene().environment, other);
     EXPECT_EQ(doc.undoStack()->count(), steps);
 }

@@ -625,7 +625,7 @@ TEST(MainWindow, EnvironmentRotationDragIsOneUndoStep) {
     rotation->setSliderDown(true);  // what pressing the handle does
     for (int degrees = 5; degrees <= 90; degrees += 5) rotation->setValue(degrees);
     rotation->setSliderDown(false);
-    EXPECT_FLOAT_EQ(doc->scene().environment.rotationDegrees, 90.0f);
+    EXPECT_FLOAT_EQ(doc->scene().display.environmentRotationDegrees, 90.0f);
     EXPECT_EQ(doc->undoStack()->count(), 1);
     EXPECT_EQ(doc->undoStack()->undoText(), QStringLiteral("Rotate environment"));
     typeInto(exposure, QStringLiteral("1.5"));

@@ -4,29 +4,16 @@
 
 #include <QCoreApplication>
 #include <QDeadlineTimer>
-#include <QMetaObject>
-#include <QPointer>
 #include <QThread>
-#include <QThreadPool>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <iostream>
 
 namespace mipgloss::ui {
 
 namespace {
-// One worker: jobs run one after another, the newest request wins.
-QThreadPool& workerPool() {
-    static QThreadPool* pool = [] {
-        auto* p = new QThreadPool;
-        p->setMaxThreadCount(1);
-        return p;
-    }();
-    return *pool;
-}
-
 // True when a job for (a, na) makes what (b, nb) asks for: the same environment filtered at least
 // as deep, with the irradiance map if b needs one.
 bool covers(const EnvironmentSettings& a, const ChainNeeds& na, const EnvironmentSettings& b, const ChainNeeds& nb) {
@@ -34,7 +21,9 @@ bool covers(const EnvironmentSettings& a, const ChainNeeds& na, const Environmen
 }
 }  // namespace
 
-EnvironmentManager::EnvironmentManager(QObject* parent) : QObject(parent), settle_(new QTimer(this)) {
+EnvironmentManager::EnvironmentManager(QObject* parent)
+    : QObject(parent), worker_(new BackgroundWorker(this)), settle_(new QTimer(this)) {
+    connect(worker_, &BackgroundWorker::progress, this, &EnvironmentManager::progress);
     settle_->setSingleShot(true);
     settle_->setInterval(kSettleMs);
     connect(settle_, &QTimer::timeout, this, [this] {
@@ -44,9 +33,8 @@ EnvironmentManager::EnvironmentManager(QObject* parent) : QObject(parent), settl
 }
 
 EnvironmentManager::~EnvironmentManager() {
-    if (cancelRunning_) *cancelRunning_ = true;
-    if (cancelLobes_) *cancelLobes_ = true;
-    workerPool().waitForDone();
+    // Before members go: the worker's jobs call back into them.
+    delete worker_;
 }
 
 std::vector<std::shared_ptr<const LobeCube>> EnvironmentManager::lobes() const {
@@ -58,7 +46,7 @@ std::vector<std::shared_ptr<const LobeCube>> EnvironmentManager::lobes() const {
 void EnvironmentManager::scheduleLobes() {
     // λ moved (or the scene changed): a lobe job for the old values is obsolete; wait until
     // the values rest.
-    if (cancelLobes_) *cancelLobes_ = true;
+    if (lobeJob_) lobeJob_->cancel();
     settle_->start();
 }
 
@@ -81,39 +69,35 @@ void EnvironmentManager::startLobeJob() {
     if (missing.empty()) return;
     lobeBusy_ = true;
     emit busyChanged(true);
-    auto cancel = std::make_shared<std::atomic<bool>>(false);
-    cancelLobes_ = cancel;
     const std::shared_ptr<const PreparedEnvironment> environment = current_;
-    QPointer<EnvironmentManager> self(this);
-    (void)QtConcurrent::run(&workerPool(), [=] {
-        std::vector<std::shared_ptr<const LobeCube>> made;
-        try {
-            for (int key : missing) {
-                if (*cancel) break;
-                made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+    lobeJob_ = worker_->start(
+        [environment, missing](Job& job) {
+            std::vector<std::shared_ptr<const LobeCube>> made;
+            try {
+                for (int key : missing) {
+                    if (job.cancelled()) break;
+                    made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+                }
+            } catch (const std::exception& e) {
+                std::cerr << "mipgloss: lobe cube: " << e.what() << '\n';
             }
-        } catch (const std::exception& e) {
-            std::cerr << "mipgloss: lobe cube: " << e.what() << '\n';
-        }
-        QMetaObject::invokeMethod(
-            self, [=] {
-                if (!self) return;
-                self->lobeBusy_ = false;
-                if (self->cancelLobes_ == cancel) self->cancelLobes_.reset();
-                // Only lobes of the environment still current are kept.
-                bool changed = false;
-                for (const auto& lobe : made)
-                    if (self->current_ && lobe->filter == self->current_->filter) {
-                        self->lobes_[lobe->key] = lobe;
-                        ++self->counters_.lobeBuilds;
-                        changed = true;
-                    }
-                if (changed) emit self->lobesReady();
-                if (self->lobesWanted_ && !self->busy_) self->startLobeJob();
-                if (!self->busy()) emit self->busyChanged(false);
-            },
-            Qt::QueuedConnection);
-    });
+            return made;
+        },
+        [this](JobOutcome<std::vector<std::shared_ptr<const LobeCube>>>&& outcome, const Job& job) {
+            lobeBusy_ = false;
+            if (lobeJob_.get() == &job) lobeJob_.reset();
+            // Only lobes of the environment still current are kept.
+            bool changed = false;
+            for (const auto& lobe : outcome.value.value_or(std::vector<std::shared_ptr<const LobeCube>>{}))
+                if (current_ && lobe->filter == current_->filter) {
+                    lobes_[lobe->key] = lobe;
+                    ++counters_.lobeBuilds;
+                    changed = true;
+                }
+            if (changed) emit lobesReady();
+            if (lobesWanted_ && !busy_) startLobeJob();
+            if (!busy()) emit busyChanged(false);
+        });
 }
 
 void EnvironmentManager::watch(SceneDocument* document) {
@@ -133,25 +117,23 @@ void EnvironmentManager::watch(SceneDocument* document) {
 }
 
 void EnvironmentManager::request(const EnvironmentSettings& settings, const ChainNeeds& needs) {
-    // Rotation is applied when drawing; it never needs a build.
-    EnvironmentSettings wanted = settings;
-    wanted.rotationDegrees = 0.0f;
+    const EnvironmentSettings& wanted = settings;
     if (haveFailed_ && wanted == failedSettings_) return;  // do not retry a file that failed
     if (current_ && current_->satisfies(wanted, needs)) {
         haveRequest_ = false;
-        if (cancelRunning_) *cancelRunning_ = true;  // a job for something else is obsolete
+        if (runningJob_) runningJob_->cancel();  // a job for something else is obsolete
         return;
     }
     // The environment drawn before the running job's early one is asked for again (an open undone
     // while its chain is built): it is still here, drawn again at once.
     if (busy_ && jobStart_ && jobStart_ != current_ && jobStart_->satisfies(wanted, needs)) {
         haveRequest_ = false;
-        if (cancelRunning_) *cancelRunning_ = true;
+        if (runningJob_) runningJob_->cancel();
         current_ = jobStart_;
         emit environmentReady();
         return;
     }
-    const bool running = busy_ && cancelRunning_ && !*cancelRunning_;
+    const bool running = busy_ && runningJob_ && !runningJob_->cancelled();
     if (running && covers(runningSettings_, runningNeeds_, wanted, needs)) {
         haveRequest_ = false;  // on its way (a scene edit that changes nothing the build needs)
         return;
@@ -165,7 +147,7 @@ void EnvironmentManager::request(const EnvironmentSettings& settings, const Chai
         // the same way goes on to its early environment, which the next job starts from: a λ or
         // builder change during a long import does not read the file again.
         const bool sameFileImporting = running && importing_ && sameImport(runningSettings_, wanted);
-        if (cancelRunning_ && !sameFileImporting) *cancelRunning_ = true;
+        if (runningJob_ && !sameFileImporting) runningJob_->cancel();
         return;
     }
     startJob();
@@ -175,8 +157,6 @@ void EnvironmentManager::startJob() {
     haveRequest_ = false;
     busy_ = true;
     emit busyChanged(true);
-    auto cancel = std::make_shared<std::atomic<bool>>(false);
-    cancelRunning_ = cancel;
     const EnvironmentSettings settings = wantedSettings_;
     const ChainNeeds needs = wantedNeeds_;
     runningSettings_ = settings;
@@ -185,47 +165,25 @@ void EnvironmentManager::startJob() {
     jobStart_ = current_;
     const bool imports = !previous || !previous->sameImport(settings);
     importing_ = imports;
-    QPointer<EnvironmentManager> self(this);
 
-    (void)QtConcurrent::run(&workerPool(), [=] {
-        std::shared_ptr<PreparedEnvironment> result;
-        QString error;
-        bool imported = false, importCutShort = false;
-        try {
-            auto progress = [&](const std::string& stage, float fraction) {
-                if (*cancel) return false;
-                QMetaObject::invokeMethod(
-                    self, [self, stage, fraction] {
-                        if (self) emit self->progress(QString::fromStdString(stage), fraction);
-                    },
-                    Qt::QueuedConnection);
-                return true;
-            };
-            // Queued like progress, so the UI sees the early environment after the import's
+    // Whether the job read its file before it stopped (set on the worker, read in `done`).
+    auto imported = std::make_shared<std::atomic<bool>>(false);
+    runningJob_ = worker_->start(
+        [settings, needs, previous, imported, this](Job& job) {
+            // Posted like progress, so the UI sees the early environment after the import's
             // reports and before the build's, and before onJobFinished.
             auto onImported = [&](const std::shared_ptr<const PreparedEnvironment>& early) {
-                imported = true;
-                QMetaObject::invokeMethod(
-                    self, [self, early, cancel] {
-                        if (self) self->onImported(early, cancel);
-                    },
-                    Qt::QueuedConnection);
+                *imported = true;
+                Job* posting = &job;
+                job.post([this, early, posting] { this->onImported(early, posting); });
             };
-            result = std::make_shared<PreparedEnvironment>(
-                prepareEnvironment(settings, needs, previous.get(), progress, onImported));
-        } catch (const Cancelled&) {
-            result.reset();
-            importCutShort = imports && !imported;
-        } catch (const std::exception& e) {
-            error = QString::fromStdString(e.what());
-            if (error.isEmpty()) error = QStringLiteral("unknown error");
-        }
-        QMetaObject::invokeMethod(
-            self, [=] {
-                if (self) self->onJobFinished(result, error, *cancel, importCutShort);
-            },
-            Qt::QueuedConnection);
-    });
+            return std::make_shared<PreparedEnvironment>(
+                prepareEnvironment(settings, needs, previous.get(), job.asProgress(), onImported));
+        },
+        [this, imports, imported](JobOutcome<std::shared_ptr<PreparedEnvironment>>&& outcome, const Job& job) {
+            onJobFinished(outcome.value.value_or(nullptr), outcome.error, job.cancelled(),
+                          outcome.cutShort && imports && !*imported);
+        });
 }
 
 void EnvironmentManager::adopt(std::shared_ptr<const PreparedEnvironment> next) {
@@ -233,17 +191,16 @@ void EnvironmentManager::adopt(std::shared_ptr<const PreparedEnvironment> next) 
     emit environmentReady();
 }
 
-void EnvironmentManager::onImported(std::shared_ptr<const PreparedEnvironment> early,
-                                    const std::shared_ptr<std::atomic<bool>>& cancel) {
+void EnvironmentManager::onImported(std::shared_ptr<const PreparedEnvironment> early, const Job* job) {
     ++counters_.imports;  // read, whether drawn or not
     // A job cancelled while it read its file (another file was asked for) is never drawn.
-    if (cancel != cancelRunning_ || *cancel) return;
+    if (job != runningJob_.get() || job->cancelled()) return;
     importing_ = false;
     adopt(std::move(early));
     ++counters_.earlyEnvironments;
     // A request for this same file with other needs or builder waited for the import (request):
     // this job's chain is not what it asks for, so the next job starts now, from this base.
-    if (haveRequest_) *cancel = true;
+    if (haveRequest_) runningJob_->cancel();
 }
 
 void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error,
@@ -275,7 +232,7 @@ void EnvironmentManager::onJobFinished(std::shared_ptr<PreparedEnvironment> resu
         haveFailed_ = false;
         lobesWanted_ = true;  // the new environment's lobes
     }
-    cancelRunning_.reset();
+    runningJob_.reset();
     jobStart_.reset();
     importing_ = false;
     if (haveRequest_) {

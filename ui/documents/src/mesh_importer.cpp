@@ -5,10 +5,8 @@
 #include "mipgloss/ui/scene_document.h"
 
 #include <QFileInfo>
-#include <QFutureWatcher>
 #include <QLocale>
 #include <QUndoStack>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <algorithm>
 #include <iostream>
@@ -47,30 +45,43 @@ MeshImporter::Loaded loadOne(const QString& path) {
 
 }  // namespace
 
-MeshImporter::MeshImporter(SceneDocument* document, QObject* parent) : QObject(parent), document_(document) {}
+MeshImporter::MeshImporter(SceneDocument* document, QObject* parent)
+    : QObject(parent), document_(document), worker_(new BackgroundWorker(this)) {
+    connect(worker_, &BackgroundWorker::progress, this, &MeshImporter::progress);
+}
+
+MeshImporter::~MeshImporter() {
+    // Before members go: the worker's job calls back into them.
+    delete worker_;
+}
 
 void MeshImporter::import(const QStringList& paths) {
     if (paths.isEmpty()) return;
     std::int64_t bytes = 0;
     for (const QString& path : paths) bytes += QFileInfo(path).size();
-    auto loadAll = [paths] {
+    if (bytes <= kBackgroundImportBytes) {
         std::vector<Loaded> results;
         for (const QString& path : paths) results.push_back(loadOne(path));
-        return results;
-    };
-    if (bytes <= kBackgroundImportBytes) {
-        finish(loadAll());
+        finish(results);
         return;
     }
-    ++running_;
     emit backgroundStarted(static_cast<int>(paths.size()));
-    auto* watcher = new QFutureWatcher<std::vector<Loaded>>(this);
-    connect(watcher, &QFutureWatcher<std::vector<Loaded>>::finished, this, [this, watcher] {
-        --running_;
-        finish(watcher->result());
-        watcher->deleteLater();
-    });
-    watcher->setFuture(QtConcurrent::run(loadAll));
+    worker_->start(
+        [paths](Job& job) {
+            // Files are read whole (the readers report no progress of their own): progress counts
+            // files, and a cancellation stops before the next one.
+            std::vector<Loaded> results;
+            for (qsizetype i = 0; i < paths.size(); ++i) {
+                const std::string stage = tr("importing %1").arg(QFileInfo(paths[i]).fileName()).toStdString();
+                if (!job.progress(stage, static_cast<float>(i) / static_cast<float>(paths.size()))) throw Cancelled{};
+                results.push_back(loadOne(paths[i]));
+            }
+            return results;
+        },
+        [this](JobOutcome<std::vector<Loaded>>&& outcome, const Job&) {
+            // Cancelled imports add nothing (the window that asked is closing).
+            if (outcome.value) finish(*outcome.value);
+        });
 }
 
 void MeshImporter::finish(const std::vector<Loaded>& results) {

@@ -43,12 +43,6 @@ private:
 
 }  // namespace
 
-bool sameEnvironmentRequest(EnvironmentSettings a, EnvironmentSettings b) {
-    a.rotationDegrees = 0.0f;
-    b.rotationDegrees = 0.0f;
-    return a == b;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Materials
 
@@ -214,7 +208,6 @@ void SetEnvironmentCommand::updateText() {
     field.note(before_.handedness != after_.handedness, EDIT_TEXT("Change face image orientation"));
     field.note(before_.faceSize != after_.faceSize, EDIT_TEXT("Change face size"));
     field.note(before_.builder != after_.builder, EDIT_TEXT("Change mip builder"));
-    field.note(before_.rotationDegrees != after_.rotationDegrees, EDIT_TEXT("Rotate environment"));
     setText(field.text());
 }
 
@@ -234,6 +227,8 @@ void SetDisplayCommand::updateText() {
     field.note(before_.exposureEv != after_.exposureEv, EDIT_TEXT("Change exposure"));
     field.note(before_.toneMap != after_.toneMap, EDIT_TEXT("Change tone map"));
     field.note(before_.samples != after_.samples, EDIT_TEXT("Change multisampling"));
+    field.note(before_.environmentRotationDegrees != after_.environmentRotationDegrees,
+               EDIT_TEXT("Rotate environment"));
     setText(field.text());
 }
 

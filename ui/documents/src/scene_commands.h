@@ -229,8 +229,4 @@ private:
     void updateText() override;
 };
 
-// Two environment settings ask for the same environment when they differ at most in rotation
-// (rotation is applied when drawing; EnvironmentManager::lastFailure() has it zeroed).
-bool sameEnvironmentRequest(EnvironmentSettings a, EnvironmentSettings b);
-
 }  // namespace mipgloss::ui

@@ -187,10 +187,10 @@ void SceneDocument::setDisplay(const DisplaySettings& settings, MergeKey merge) 
 
 void SceneDocument::withdrawFailedEnvironment(const EnvironmentSettings& failed,
                                               const EnvironmentSettings& fallback) {
-    if (!sameEnvironmentRequest(scene_.environment, failed)) return;  // moved on meanwhile
+    if (!(scene_.environment == failed)) return;  // moved on meanwhile
     auto asksForFailed = [&](const QUndoCommand* command) {
         const auto* step = dynamic_cast<const SetEnvironmentCommand*>(command);
-        return step && !step->isObsolete() && sameEnvironmentRequest(step->after(), failed);
+        return step && !step->isObsolete() && step->after() == failed;
     };
     // The newest steps that asked for it: undone (their undo puts back what was asked before) and
     // dropped from the stack.
@@ -203,14 +203,12 @@ void SceneDocument::withdrawFailedEnvironment(const EnvironmentSettings& failed,
         undoStack_->undo();
         if (undoStack_->index() == index) break;  // a macro is open: the stack refuses to undo
     }
-    if (!sameEnvironmentRequest(scene_.environment, failed)) return;
+    if (!(scene_.environment == failed)) return;
     // Under later edits: put the fallback back as it is, and let Undo pass over the old steps.
     for (int i = 0; i < undoStack_->index(); ++i)
         if (asksForFailed(undoStack_->command(i)))
             const_cast<QUndoCommand*>(undoStack_->command(i))->setObsolete(true);
-    EnvironmentSettings settings = fallback;
-    settings.rotationDegrees = scene_.environment.rotationDegrees;
-    replaceEnvironment(settings);
+    replaceEnvironment(fallback);
     notifyChanged();
 }
 

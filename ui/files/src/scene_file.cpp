@@ -84,8 +84,6 @@ public:
         const std::string defaultBuilder = builderName(kDefaultBuilder);
         const std::string builder = string(o, "builder", where, &defaultBuilder);
         if (!parseBuilder(builder, s.builder)) fail("unknown \"environment.builder\" \"" + builder + "\"");
-        s.rotationDegrees = static_cast<float>(
-            std::remainder(number(o, "rotationDegrees", where, s.rotationDegrees), 360.0));
         return s;
     }
 
@@ -108,6 +106,11 @@ public:
             warn("\"display.samples\" " + std::to_string(samples) + " is not a power of two; using " +
                  std::to_string(d.samples));
         return d;
+    }
+
+    // An angle in degrees, kept in [−180°, 180°]; 0 when absent.
+    float rotation(const QJsonObject& o, const char* key, const std::string& where) const {
+        return static_cast<float>(std::remainder(number(o, key, where, 0.0), 360.0));
     }
 
     Transform transform(const QJsonObject& o, const std::string& where) const {
@@ -186,13 +189,13 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
         {"handedness", handednessName(e.handedness)},
         {"faceSize", e.faceSize},
         {"builder", builderName(e.builder)},
-        {"rotationDegrees", e.rotationDegrees},
     };
     const DisplaySettings& d = scene.display;
     QJsonObject display{
         {"showBackground", d.showBackground}, {"backgroundLambda", d.backgroundLambda},
         {"exposureEv", d.exposureEv},         {"toneMap", toneMapName(d.toneMap)},
         {"samples", d.samples},
+        {"environmentRotationDegrees", d.environmentRotationDegrees},
     };
     // The materials the objects use, once each, in the scene's order.
     QJsonArray materials;
@@ -237,6 +240,11 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
     scene.environment = reader.environment(reader.object(root, "environment", "environment", false));
     reader.setLambdaMeaning(version, scene.environment.faceSize);
     scene.display = reader.display(reader.object(root, "display", "display", false));
+    // Versions 1 to 3 kept the rotation with the environment (scene_file.h).
+    scene.display.environmentRotationDegrees =
+        version >= kSceneVersionRotationInDisplay
+            ? reader.rotation(reader.object(root, "display", "display", false), "environmentRotationDegrees", "display")
+            : reader.rotation(reader.object(root, "environment", "environment", false), "rotationDegrees", "environment");
 
     // Version 3: named materials, referred to by name from the objects.
     const QJsonValue materials = root.value("materials");

@@ -110,12 +110,6 @@ struct Renderer::Impl {
         gl->glActiveTexture(GL_TEXTURE0);
     }
 
-    // Chain level (MIN_LOD) standing in for λ's lobe while it moves.
-    float chainLevel(float lambda) const {
-        if (!isValidLambda(lambda)) return 0.0f;
-        return static_cast<float>(chainLevelForExponent(lambdaToExponent(lambda), environmentFaceSize));
-    }
-
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // its lobe cube when one has arrived, else from the chain at the level standing in for it.
     void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
@@ -490,7 +484,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     const glm::mat4 view = camera.view();
     const glm::mat4 projection = camera.projection(aspect, sceneBounds(scene));
     const glm::mat4 viewProjection = projection * view;
-    const glm::mat3 envRotation = environmentRotation(scene.environment.rotationDegrees);
+    const glm::mat3 envRotation = environmentRotation(scene.display.environmentRotationDegrees);
     const Frustum frustum = Frustum::fromViewProjection(viewProjection);
 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, d.msFbo);
@@ -525,9 +519,9 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
                                    glm::value_ptr(glm::inverse(rotationOnly)));
             gl->glUniformMatrix3fv(bg.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
                                    glm::value_ptr(envRotation));
-            const float backgroundLambda = scene.display.backgroundLambda;
-            const Impl::GpuLobe* lobe = backgroundLambda > 0.0f ? d.lobeFor(backgroundLambda) : nullptr;
-            gl->glUniform1f(bg.uniformLocation("uLod"), d.chainLevel(backgroundLambda));
+            const ObjectLookup plan = planBackground(scene.display.backgroundLambda, d.environmentFaceSize);
+            const Impl::GpuLobe* lobe = plan.wantsLobeCube ? d.lobeFor(plan.lambda) : nullptr;
+            gl->glUniform1f(bg.uniformLocation("uLod"), plan.minLevel);
             gl->glUniform1i(bg.uniformLocation("uUseLobe"), lobe ? 1 : 0);
             if (lobe) d.bindLobe(*lobe);
             gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
@@ -637,7 +631,7 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
     d.drawObjects(*d.aovProgram, scene, camera.position(), viewProjection,
-                  environmentRotation(scene.environment.rotationDegrees),
+                  environmentRotation(scene.display.environmentRotationDegrees),
                   Frustum::fromViewProjection(viewProjection), true);
     gl->glBindSampler(0, 0);
 

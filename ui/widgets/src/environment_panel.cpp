@@ -90,8 +90,8 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     rotation_->setToolTip(tr("Turns the environment about +Y (degrees); never rebuilds"));
     sessions_->track(rotation_);
     connect(rotation_, &QSlider::valueChanged, this, [this](int degrees) {
-        editEnvironment([degrees](EnvironmentSettings& s) { s.rotationDegrees = static_cast<float>(degrees); },
-                        rotation_);
+        editDisplay([degrees](DisplaySettings& d) { d.environmentRotationDegrees = static_cast<float>(degrees); },
+                    rotation_);
     });
     form->addRow(tr("Rotation"), rotation_);
 
@@ -187,7 +187,7 @@ void EnvironmentPanel::refresh() {
     }
     faceSize_->setCurrentIndex(sizeIndex);
     handedness_->setCurrentIndex(handedness_->findData(static_cast<int>(s.handedness)));
-    rotation_->setValue(static_cast<int>(std::lround(s.rotationDegrees)));
+    rotation_->setValue(static_cast<int>(std::lround(d.environmentRotationDegrees)));
     showBackground_->setChecked(d.showBackground);
     backgroundBlur_->setValue(d.backgroundLambda);
     backgroundBlur_->setEnabled(d.showBackground);

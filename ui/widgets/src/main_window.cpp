@@ -381,10 +381,18 @@ void MainWindow::createStatusBar() {
                 progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
             });
     connect(importer_, &MeshImporter::backgroundStarted, this, [this](int files) {
-        progress_->setRange(0, 0);  // busy indicator: OpenMesh reports no progress
+        // One file: a busy indicator (a file is read whole, with no progress of its own); several:
+        // the fraction of files read.
+        progress_->setRange(0, files > 1 ? 100 : 0);
+        progress_->setValue(0);
         progress_->setFormat(tr("importing"));
         progress_->show();
         showMessage(tr("Importing %n mesh(es)…", nullptr, files), false);
+    });
+    connect(importer_, &MeshImporter::progress, this, [this](const QString& stage, double fraction) {
+        if (progress_->maximum() == 0) return;
+        progress_->setFormat(stage + QStringLiteral(" %p%"));
+        progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
     });
 }
 

@@ -8,9 +8,6 @@
 #include "mipgloss/ui/thumbnail.h"
 
 #include <QGuiApplication>
-#include <QMetaObject>
-#include <QPointer>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <algorithm>
 #include <cmath>
@@ -24,13 +21,11 @@ namespace {
 
 // The thumbnail environment: `source`'s base at `faceSize` (or smaller when it is smaller), its
 // chain filtered through every level a λ reaches, and its irradiance map. Runs on the worker;
-// throws Cancelled when `cancel` is set.
+// throws Cancelled when `job` is cancelled.
 std::shared_ptr<const PreparedEnvironment> prepareThumbnailEnvironment(const PreparedEnvironment& source,
-                                                                       int faceSize,
-                                                                       const std::atomic<bool>& cancel) {
+                                                                       int faceSize, const Job& job) {
     auto out = std::make_shared<PreparedEnvironment>();
     out->settings = source.settings;
-    out->settings.rotationDegrees = 0.0f;
     out->report = source.report;
     const int size = std::min(faceSize, source.base->size());
     out->base = size == source.base->size() ? source.base
@@ -39,10 +34,10 @@ std::shared_ptr<const PreparedEnvironment> prepareThumbnailEnvironment(const Pre
     const ChainNeeds needs = thumbnailNeeds(size);
     BuildOptions options;
     options.lastFilteredLevel = needs.lastFilteredLevel;
-    options.progress = [&cancel](const std::string&, float) { return !cancel; };
+    options.progress = [&job](const std::string&, float) { return !job.cancelled(); };
     out->chain = std::make_shared<const MipChain>(buildChain(*out->base, source.settings.builder, options));
     out->lastFilteredLevel = needs.lastFilteredLevel;
-    if (cancel) throw Cancelled{};
+    if (job.cancelled()) throw Cancelled{};
     out->irradiance = std::make_shared<const CubeMap>(computeIrradiance(*out->base));
     return out;
 }
@@ -50,8 +45,11 @@ std::shared_ptr<const PreparedEnvironment> prepareThumbnailEnvironment(const Pre
 }  // namespace
 
 ThumbnailCache::ThumbnailCache(LibraryDocument* document, EnvironmentManager* environments, QObject* parent)
-    : QObject(parent), document_(document), environments_(environments), drawTimer_(new QTimer(this)) {
-    pool_.setMaxThreadCount(1);
+    : QObject(parent),
+      document_(document),
+      environments_(environments),
+      worker_(new BackgroundWorker(this)),
+      drawTimer_(new QTimer(this)) {
     // One thumbnail per turn of the event loop: input and repaints get their turn in between.
     drawTimer_->setSingleShot(true);
     drawTimer_->setInterval(0);
@@ -65,8 +63,8 @@ ThumbnailCache::ThumbnailCache(LibraryDocument* document, EnvironmentManager* en
 }
 
 ThumbnailCache::~ThumbnailCache() {
-    if (cancelBuild_) *cancelBuild_ = true;
-    pool_.waitForDone();
+    // Before members go: the worker's job calls back into them.
+    delete worker_;
 }
 
 void ThumbnailCache::setVisibleRows(std::function<std::vector<int>()> visibleRows) {
@@ -132,44 +130,37 @@ void ThumbnailCache::startBuild(const std::shared_ptr<const PreparedEnvironment>
     builtFromBase_ = source->base;
     builtWithBuilder_ = source->settings.builder;
     building_ = true;
-    auto cancel = std::make_shared<std::atomic<bool>>(false);
-    cancelBuild_ = cancel;
-    QPointer<ThumbnailCache> self(this);
-    (void)QtConcurrent::run(&pool_, [self, source, cancel] {
-        std::shared_ptr<const PreparedEnvironment> made;
-        try {
-            made = prepareThumbnailEnvironment(*source, kThumbnailFaceSize, *cancel);
-        } catch (const Cancelled&) {
-        } catch (const std::exception& e) {
-            std::cerr << "mipgloss: thumbnail environment: " << e.what() << '\n';
-        }
-        QMetaObject::invokeMethod(
-            self.data(),
-            [self, made] {
-                if (!self) return;
-                ThumbnailCache& d = *self;
-                d.building_ = false;
-                if (made) {
-                    d.environment_ = made;
-                    ++d.environmentVersion_;
-                    ++d.counters_.environmentBuilds;
-                    // Pictures of parameters no entry has any more go; the others stay on show
-                    // until their rows are redrawn.
-                    std::set<Key> used;
-                    for (const LibraryMaterial& entry : d.document_->library().entries)
-                        used.insert(keyOf(entry.material));
-                    std::erase_if(d.pictures_, [&](const auto& picture) { return !used.count(picture.first); });
-                    emit d.environmentReady();
-                }
-                if (d.pendingSource_) {
-                    const auto next = std::move(d.pendingSource_);
-                    d.pendingSource_.reset();
-                    if (!d.builtFrom(*next)) d.startBuild(next);
-                }
-                d.schedule();
-            },
-            Qt::QueuedConnection);
-    });
+    worker_->start(
+        [source](Job& job) {
+            try {
+                return prepareThumbnailEnvironment(*source, kThumbnailFaceSize, job);
+            } catch (const Cancelled&) {
+                throw;
+            } catch (const std::exception& e) {
+                std::cerr << "mipgloss: thumbnail environment: " << e.what() << '\n';
+                return std::shared_ptr<const PreparedEnvironment>();
+            }
+        },
+        [this](JobOutcome<std::shared_ptr<const PreparedEnvironment>>&& outcome, const Job&) {
+            building_ = false;
+            if (const std::shared_ptr<const PreparedEnvironment> made = outcome.value.value_or(nullptr)) {
+                environment_ = made;
+                ++environmentVersion_;
+                ++counters_.environmentBuilds;
+                // Pictures of parameters no entry has any more go; the others stay on show until
+                // their rows are redrawn.
+                std::set<Key> used;
+                for (const LibraryMaterial& entry : document_->library().entries) used.insert(keyOf(entry.material));
+                std::erase_if(pictures_, [&](const auto& picture) { return !used.count(picture.first); });
+                emit environmentReady();
+            }
+            if (pendingSource_) {
+                const auto next = std::move(pendingSource_);
+                pendingSource_.reset();
+                if (!builtFrom(*next)) startBuild(next);
+            }
+            schedule();
+        });
 }
 
 void ThumbnailCache::schedule() {

@@ -20,7 +20,7 @@ namespace mipgloss {
 bool sameImport(const EnvironmentSettings& a, const EnvironmentSettings& b);
 
 struct PreparedEnvironment {
-    EnvironmentSettings settings;  // what it was made from (rotation is a draw-time uniform)
+    EnvironmentSettings settings;  // what it was made from
     std::shared_ptr<const CubeMap> base;
     ImportReport report;
     // Null in an early environment (EnvironmentImported): the import alone, before the chain.

@@ -37,6 +37,11 @@ struct ObjectLookup {
 // base face size.
 ObjectLookup planLookup(const Material& material, bool irradianceReady, int chainFaceSize);
 
+// The background (background.frag): the environment seen along the view ray, blurred by the
+// display's λ exactly as a reflect material of that λ is, so the plan is that material's (its lobe
+// cube once ready, the chain level standing in meanwhile; an invalid λ is sharp).
+ObjectLookup planBackground(float lambda, int chainFaceSize);
+
 // "#define LOOKUP_REFLECT 0" ... and "#define TONE_MAP_LINEAR 0" ..., one line each.
 std::string shaderDefines();
 

@@ -105,7 +105,6 @@ struct EnvironmentSettings {
     Handedness handedness = Handedness::Right;
     int faceSize = 128;                        // the base level's face size after import
     Builder builder = kDefaultBuilder;
-    float rotationDegrees = 0.0f;              // turns the environment about +Y
     bool operator==(const EnvironmentSettings&) const = default;
 };
 
@@ -115,6 +114,9 @@ struct DisplaySettings {
     float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping
     ToneMap toneMap = ToneMap::Aces;
     int samples = 4;                // multisampling
+    // Turns the environment about +Y when drawing (objects' reflections and the background). A
+    // view of the environment, not a property of it: it never asks for a build.
+    float environmentRotationDegrees = 0.0f;
     bool operator==(const DisplaySettings&) const = default;
 };
 

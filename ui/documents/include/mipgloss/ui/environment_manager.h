@@ -12,13 +12,13 @@
 #pragma once
 
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/ui/background_worker.h"
 #include "mipgloss/scene/lobes.h"
 
 #include <QObject>
 #include <QString>
 #include <QTimer>
 
-#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -91,12 +91,13 @@ private:
     void startJob();
     void startLobeJob();
     void scheduleLobes();
-    void onImported(std::shared_ptr<const PreparedEnvironment> early, const std::shared_ptr<std::atomic<bool>>& cancel);
+    void onImported(std::shared_ptr<const PreparedEnvironment> early, const Job* job);
     void onJobFinished(std::shared_ptr<PreparedEnvironment> result, const QString& error, bool cancelled,
                        bool importCutShort);
     // Makes `next`, made by the running job, current.
     void adopt(std::shared_ptr<const PreparedEnvironment> next);
 
+    BackgroundWorker* worker_;
     SceneDocument* document_ = nullptr;
     std::shared_ptr<const PreparedEnvironment> current_;
     EnvironmentSettings wantedSettings_;
@@ -110,7 +111,8 @@ private:
     // What was current when the running job started: drawn again if the job fails after its early
     // environment, or if the scene asks for it again (an undone open) while the job runs.
     std::shared_ptr<const PreparedEnvironment> jobStart_;
-    std::shared_ptr<std::atomic<bool>> cancelRunning_;
+    // The running environment job and lobe job (the one worker runs them in turn).
+    std::shared_ptr<Job> runningJob_;
     EnvironmentCounters counters_;
     // Last request that failed, so the same bad file is not retried on every scene change.
     EnvironmentSettings failedSettings_;
@@ -119,7 +121,7 @@ private:
     std::map<int, std::shared_ptr<const LobeCube>> lobes_;
     bool lobeBusy_ = false;
     bool lobesWanted_ = false;
-    std::shared_ptr<std::atomic<bool>> cancelLobes_;
+    std::shared_ptr<Job> lobeJob_;
     QTimer* settle_ = nullptr;
 };
 

@@ -1,6 +1,6 @@
 // Imports mesh files into a SceneDocument. Files adding up to more than kBackgroundImportBytes are
-// loaded on a worker thread (the UI never waits on a large file), smaller ones at once; finished()
-// follows either way. Each mesh becomes an object named after the file stem, referring to the
+// loaded on a worker thread (background_worker.h; the UI never waits on a large file), smaller ones
+// at once; finished() follows either way. Each mesh becomes an object named after the file stem, referring to the
 // file by its absolute path, with a material of its own (named after it) of λ = kImportedLambda
 // looked up by the reflection vector: a plainly glossy start, well inside the filtered levels of
 // any chain of 16² or more. One import (one call, however many files) is one undo step.
@@ -9,6 +9,7 @@
 #pragma once
 
 #include "mipgloss/scene/scene.h"
+#include "mipgloss/ui/background_worker.h"
 
 #include <QObject>
 #include <QString>
@@ -29,10 +30,11 @@ public:
     static constexpr float kImportedLambda = 3.0f;
 
     explicit MeshImporter(SceneDocument* document, QObject* parent = nullptr);
+    ~MeshImporter() override;  // cancels a background import: nothing of it is added
 
     void import(const QStringList& paths);
     // True while a background import runs.
-    bool busy() const { return running_ > 0; }
+    bool busy() const { return worker_->busy(); }
 
     // One loaded mesh file (or its error), handed from the loader to the document.
     struct Loaded;
@@ -40,6 +42,8 @@ public:
 signals:
     // A background import started (the window shows a busy indicator).
     void backgroundStarted(int files);
+    // A background import's progress: the file being read and the fraction of files read.
+    void progress(const QString& stage, double fraction);
     // After import(): what was added ("bunny.obj (2,256 triangles)", in order) and the errors, one
     // per failed file, each naming it.
     void finished(const QStringList& added, const QStringList& errors);
@@ -48,7 +52,7 @@ private:
     void finish(const std::vector<Loaded>& results);
 
     SceneDocument* document_;
-    int running_ = 0;
+    BackgroundWorker* worker_;
 };
 
 }  // namespace mipgloss::ui

@@ -95,8 +95,8 @@ public:
 
     void setEnvironment(const EnvironmentSettings& settings, MergeKey merge = 0);
     void setDisplay(const DisplaySettings& settings, MergeKey merge = 0);
-    // The environment the document asked for, `failed` (EnvironmentManager::lastFailure(), whose
-    // rotation is ignored), could not be used: `fallback` goes back without a step of its own.
+    // The environment the document asked for, `failed` (EnvironmentManager::lastFailure()), could
+    // not be used: `fallback` goes back without a step of its own.
     // The steps that asked for `failed` are withdrawn: the newest ones on the stack are undone and
     // dropped (neither Undo nor Redo offers them again), and older ones, under later edits, are
     // made obsolete (Undo passes over them without changing anything). Nothing happens when the

@@ -1,12 +1,11 @@
-// Scene files: JSON, format "mipgloss-scene", version 3 (versions 1 and 2 still load, see below).
+// Scene files: JSON, format "mipgloss-scene", version 4 (versions 1 to 3 still load, see below).
 //
 //   {
-//     "format": "mipgloss-scene", "version": 3,
+//     "format": "mipgloss-scene", "version": 4,
 //     "environment": {"source": "env/sky.exr" | "builtin:courtyard", "layout": "auto",
-//                     "handedness": "right", "faceSize": 128, "builder": "phong",
-//                     "rotationDegrees": 0},
+//                     "handedness": "right", "faceSize": 128, "builder": "phong"},
 //     "display": {"showBackground": true, "backgroundLambda": 0, "exposureEv": 0,
-//                 "toneMap": "aces", "samples": 4},
+//                 "toneMap": "aces", "samples": 4, "environmentRotationDegrees": 0},
 //     "materials": [{"name": "gold", "library": "Gold",
 //                    "lambda": 3, "phongExponent": 767, "mode": "reflect" | "normal",
 //                    "useIrradiance": false, "tint": [r, g, b], "sharperAtGrazing": false}],
@@ -44,8 +43,14 @@
 //     n = legacyLambdaToExponent(λ_old, N),   λ = exponentToLambda(n)
 // (λ_old = 0 stays 0, the mirror; a face size of 128 leaves λ unchanged; λ_old beyond the old
 // n = 0 point maps to n = 0, λ ≈ 7.79). Version 1 accepted λ_old in [0, 16] (its old limit);
-// values outside are errors as above. "phongExponent" is not read from version 1 files. Files are
-// always written as version 3.
+// values outside are errors as above. "phongExponent" is not read from version 1 files.
+//
+// The environment's rotation (version 4) is a display setting, "display.environmentRotationDegrees":
+// how the environment is turned when drawn, never what is built. Versions 1 to 3 kept it as
+// "environment.rotationDegrees"; it loads into the display setting. Either is a finite number,
+// kept in [−180°, 180°].
+//
+// Files are always written as the newest version.
 //
 // Paths: saved relative to the scene file's folder when the file lies inside it or at most two
 // levels above it (so a project folder moved as a whole keeps working), absolute otherwise; loaded
@@ -74,9 +79,11 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 3;
+inline constexpr int kSceneVersion = 4;
 // The version that named materials and shared them between objects.
 inline constexpr int kSceneVersionNamedMaterials = 3;
+// The version that moved the environment's rotation into the display settings.
+inline constexpr int kSceneVersionRotationInDisplay = 4;
 // The version whose λ meant a mip level of the environment's own face size (see above).
 inline constexpr int kSceneVersionLegacyLambda = 1;
 

@@ -18,14 +18,13 @@
 
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/scene.h"
+#include "mipgloss/ui/background_worker.h"
 
 #include <QObject>
 #include <QPixmap>
 #include <QString>
-#include <QThreadPool>
 #include <QTimer>
 
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -110,8 +109,7 @@ private:
     Builder builtWithBuilder_ = kDefaultBuilder;
     std::shared_ptr<const PreparedEnvironment> pendingSource_;  // newest wanted while a build runs
     bool building_ = false;
-    std::shared_ptr<std::atomic<bool>> cancelBuild_;  // set by the destructor only
-    QThreadPool pool_;
+    BackgroundWorker* worker_;  // builds thumbnail environments; cancelled by the destructor
 
     std::map<Key, Picture> pictures_;
     QTimer* drawTimer_ = nullptr;
