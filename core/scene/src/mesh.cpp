@@ -1,6 +1,7 @@
 #include "mipgloss/scene/mesh.h"
 
 #include "formats/mesh_formats.h"
+#include "mipgloss/io/atomic_write.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -18,14 +19,18 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <utility>
+
+#include <unistd.h>
 
 // Generated at build time from resources/meshes/teapot.obj (core/cmake/embed_file.cmake).
 namespace mipgloss::embedded {
@@ -237,9 +242,23 @@ void writeMesh(const Mesh& mesh, const fs::path& path) {
         out.add_face(handles[mesh.indices[i]], handles[mesh.indices[i + 1]], handles[mesh.indices[i + 2]]);
     OpenMesh::IO::Options options;
     if (ext == ".ply" || ext == ".stl" || ext == ".off") options += OpenMesh::IO::Options::Binary;
-    std::lock_guard<std::mutex> lock(openMeshMutex());
-    if (!OpenMesh::IO::write_mesh(out, path.string(), options))
-        throw MeshError(path, "could not be written");
+    // OpenMesh writes into memory (it picks the writer by the extension), and the bytes reach the
+    // file atomically like every file mipgloss writes (mipgloss/io/atomic_write.h).
+    std::ostringstream bytes(std::ios::out | std::ios::binary);
+    {
+        std::lock_guard<std::mutex> lock(openMeshMutex());
+        if (!OpenMesh::IO::write_mesh(out, bytes, "mesh" + ext, options))
+            throw MeshError(path, "could not be written");
+    }
+    const std::string data = std::move(bytes).str();
+    writeAtomically(path, [&](int fd) {
+        for (std::size_t done = 0; done < data.size();) {
+            const ::ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) throw MeshError(path, std::string("could not be written: ") + std::strerror(errno));
+            done += static_cast<std::size_t>(n);
+        }
+    });
 }
 
 Mesh makeSphere(int rings, int segments) {

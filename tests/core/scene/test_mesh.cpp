@@ -656,6 +656,12 @@ TEST(MeshExport, WrittenFilesLoadBackAlike) {
         EXPECT_NEAR(back.bounds.radius(), sphere.bounds.radius(), 1e-5f) << ext;
     }
     EXPECT_THROW(writeMesh(sphere, dir / "sphere.xyz"), MeshError);
+    // Written atomically: a rewrite replaces the file whole and leaves no temporary beside it.
+    writeMesh(makeSphere(4, 8), dir / "sphere.ply");
+    EXPECT_EQ(loadMesh(dir / "sphere.ply").triangleCount(), makeSphere(4, 8).triangleCount());
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+    EXPECT_EQ(files, 5);
 }
 
 }  // namespace

@@ -64,8 +64,9 @@ Mesh loadMesh(const std::filesystem::path& path, MeshReport* report = nullptr);
 Mesh loadMeshFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
                         MeshReport* report = nullptr);
 
-// Writes a mesh (format from the extension; PLY, STL and OFF binary). Faces OpenMesh cannot hold
-// (non-manifold ones) are left out. Throws MeshError.
+// Writes a mesh (format from the extension; PLY, STL and OFF binary), atomically (the old file or
+// the whole new one, mipgloss/io/atomic_write.h). Faces OpenMesh cannot hold (non-manifold ones)
+// are left out. Throws MeshError.
 void writeMesh(const Mesh& mesh, const std::filesystem::path& path);
 
 // Extensions loadMesh accepts, lower case with the dot (".obj", ...).
