@@ -2,6 +2,7 @@
 
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/layered.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,11 +23,14 @@ ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize) {
     for (const SceneObject& object : scene.objects) {
         if (!object.visible) continue;
         const Material& m = scene.materialOf(object);
-        if (m.mode == LookupMode::Normal && m.useIrradiance) {
+        if (m.layered) {
+            // The irradiance map, when asked, replaces the diffuse base's lookup only.
+            needs.irradiance = needs.irradiance || m.useIrradiance;
+        } else if (m.mode == LookupMode::Normal && m.useIrradiance) {
             needs.irradiance = true;
             continue;  // the irradiance map replaces the chain for this object
         }
-        reach(m.lambda);
+        for (const double lambda : lambdasOf(m)) reach(static_cast<float>(lambda));
     }
     needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(deepest - 1e-9)));
     return needs;

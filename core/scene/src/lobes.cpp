@@ -2,6 +2,7 @@
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/layered.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +23,8 @@ std::vector<int> lobesInUse(const Scene& scene) {
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh) continue;
         const Material& m = scene.materialOf(object);
-        if (m.mode == LookupMode::Normal && m.useIrradiance) continue;
-        use(m.lambda);
+        if (!m.layered && m.mode == LookupMode::Normal && m.useIrradiance) continue;
+        for (const double lambda : lambdasOf(m)) use(static_cast<float>(lambda));
     }
     return {keys.begin(), keys.end()};
 }

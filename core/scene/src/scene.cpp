@@ -33,7 +33,13 @@ bool isValidMaterial(const Material& material) {
     if (!isValidLambda(static_cast<double>(material.lambda))) return false;
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(material.tint[c]) || material.tint[c] < 0.0f) return false;
-    return true;
+    return isValidLayers(material.layers);
+}
+
+bool isValidLayers(const Layers& layers) {
+    auto unit = [](float v) { return std::isfinite(v) && v >= 0.0f && v <= 1.0f; };
+    return unit(layers.baseColor.r) && unit(layers.baseColor.g) && unit(layers.baseColor.b) && unit(layers.metallic) && unit(layers.roughness) && unit(layers.specular) && unit(layers.coat) &&
+           unit(layers.coatRoughness);
 }
 
 const char* toneMapName(ToneMap map) {

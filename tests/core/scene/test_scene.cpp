@@ -103,6 +103,15 @@ TEST(Figure1Scene, IsThePapersFigure) {
                   scene.objects[0].mesh->bounds.max.x - scene.objects[0].mesh->bounds.min.x);
 }
 
+// The paper's single-lobe material of blur λ.
+Material lobe(float lambda, LookupMode mode = LookupMode::Reflect, bool useIrradiance = false) {
+    Material m;
+    m.lambda = lambda;
+    m.mode = mode;
+    m.useIrradiance = useIrradiance;
+    return m;
+}
+
 Scene sceneWith(std::initializer_list<Material> materials) {
     Scene scene;
     auto sphere = std::make_shared<const Mesh>(makeSphere(8, 16));
@@ -136,33 +145,33 @@ TEST(ChainNeeds, FollowTheDeepestLobeInUse) {
     noBackground.display.showBackground = false;
     EXPECT_EQ(chainNeeds(noBackground, base), (ChainNeeds{0, false})) << "mirrors only";
     EXPECT_EQ(chainNeeds(sceneWith({Material{}}), base), (ChainNeeds{0, false})) << "a sharp background too";
-    EXPECT_EQ(chainNeeds(sceneWith({Material{3.2f}}), base).lastFilteredLevel, 1) << "n = 581 blends 0 and 1";
-    EXPECT_EQ(chainNeeds(sceneWith({Material{6.0f}}), base).lastFilteredLevel, 3) << "n = 11 blends 2 and 3";
-    EXPECT_EQ(chainNeeds(sceneWith({Material{40.0f}}), base).lastFilteredLevel, 4) << "n = 0: the last read level";
-    Scene hidden = sceneWith({Material{1.0f}, Material{6.0f}});
+    EXPECT_EQ(chainNeeds(sceneWith({lobe(3.2f)}), base).lastFilteredLevel, 1) << "n = 581 blends 0 and 1";
+    EXPECT_EQ(chainNeeds(sceneWith({lobe(6.0f)}), base).lastFilteredLevel, 3) << "n = 11 blends 2 and 3";
+    EXPECT_EQ(chainNeeds(sceneWith({lobe(40.0f)}), base).lastFilteredLevel, 4) << "n = 0: the last read level";
+    Scene hidden = sceneWith({lobe(1.0f), lobe(6.0f)});
     hidden.objects[1].visible = false;
     EXPECT_EQ(chainNeeds(hidden, base).lastFilteredLevel, 1) << "hidden objects need nothing";
-    Scene background = sceneWith({Material{1.0f}});
+    Scene background = sceneWith({lobe(1.0f)});
     background.display.backgroundLambda = 6.0f;
     EXPECT_EQ(chainNeeds(background, base).lastFilteredLevel, 3) << "the background's blur counts";
     background.display.showBackground = false;
     EXPECT_EQ(chainNeeds(background, base).lastFilteredLevel, 1) << "not when hidden";
-    Material irradiance{7.0f, LookupMode::Normal, true};
-    EXPECT_EQ(chainNeeds(sceneWith({Material{5.0f}, irradiance}), base), (ChainNeeds{2, true}))
+    const Material irradiance = lobe(7.0f, LookupMode::Normal, true);
+    EXPECT_EQ(chainNeeds(sceneWith({lobe(5.0f), irradiance}), base), (ChainNeeds{2, true}))
         << "the irradiance map replaces the chain for that object";
     for (float lambda = 0.0f; lambda <= 8.0f; lambda += 0.25f)
         for (int n : {16, 96, 128, 200, 512}) {
-            const int level = chainNeeds(sceneWith({Material{lambda}}), n).lastFilteredLevel;
+            const int level = chainNeeds(sceneWith({lobe(lambda)}), n).lastFilteredLevel;
             EXPECT_EQ(level, levelFor(lambda, n)) << "λ " << lambda << " base " << n;
             EXPECT_LE(level, lastReadLevel(n));
         }
 }
 
 TEST(Lobes, InUseAreTheDistinctBlurredLobesTheSceneShows) {
-    Material normalOnChain{7.0f, LookupMode::Normal, false};
-    Material irradiance{6.0f, LookupMode::Normal, true};
-    Scene scene = sceneWith({Material{0.0f}, Material{3.5f}, Material{3.5f}, Material{5.0f}, Material{2.5f},
-                             Material{3.5004f}, normalOnChain, irradiance, Material{9.0f}});
+    const Material normalOnChain = lobe(7.0f, LookupMode::Normal, false);
+    const Material irradiance = lobe(6.0f, LookupMode::Normal, true);
+    Scene scene = sceneWith({lobe(0.0f), lobe(3.5f), lobe(3.5f), lobe(5.0f), lobe(2.5f),
+                             lobe(3.5004f), normalOnChain, irradiance, lobe(9.0f)});
     scene.objects[4].visible = false;
     scene.display.backgroundLambda = 2.0f;
     ASSERT_EQ(scene.environment.builder, Builder::Phong);
@@ -177,7 +186,7 @@ TEST(Lobes, InUseAreTheDistinctBlurredLobesTheSceneShows) {
     EXPECT_EQ(lobesInUse(scene), (std::vector<int>{3584, 5120, 7168})) << "a sharp background";
     scene.environment.builder = Builder::Box;
     EXPECT_TRUE(lobesInUse(scene).empty()) << "other builders are shown as they are";
-    EXPECT_TRUE(lobesInUse(sceneWith({Material{0.0f}})).empty());
+    EXPECT_TRUE(lobesInUse(sceneWith({lobe(0.0f)})).empty());
 }
 
 TEST(Lobes, LobeCubeIsTheExactConvolutionAtItsCentres) {

@@ -31,6 +31,21 @@ const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces"
 bool parseToneMap(const std::string& text, ToneMap& out);
 
 
+// A layered material (layered.h): a diffuse base under a glossy specular layer with Fresnel, and
+// an optional clear coat over both, set the way glTF and Substance set them (metallic–roughness).
+// Every value, each base colour component too, is in [0, 1] (a surface reflects at most what
+// reaches it; isValidLayers).
+struct Layers {
+    Rgb baseColor{0.8f};         // linear: the diffuse colour of a dielectric, F0 of a metal
+    float metallic = 0.0f;       // 0 dielectric, 1 metal (in between: a blend of the two)
+    float roughness = 0.5f;      // the specular lobe, n = roughnessToExponent (specular.h)
+    float specular = 0.04f;      // F0 of the dielectric part
+    float coat = 0.0f;           // clear coat weight (0: none)
+    float coatRoughness = 0.05f; // its lobe; its F0 is kDielectricF0
+
+    bool operator==(const Layers&) const = default;
+};
+
 struct Material {
     // The artist's blur: the Phong exponent n(λ) of phong.h, the same lobe under any environment
     // and face size (λ = 0 a mirror). The renderer shows it through the chain while λ moves and
@@ -45,6 +60,12 @@ struct Material {
     // reflections at grazing angles the paper wished for (§6). Off by default.
     bool sharperAtGrazing = false;
 
+    // Layered (layered.h) instead of the paper's single lobe: `layers` decides the look, and of
+    // the fields above only useIrradiance counts (the diffuse base from the irradiance map rather
+    // than the chain's n = 1 lobe). Off: the single lobe above, exactly as before.
+    bool layered = false;
+    Layers layers;
+
     bool operator==(const Material&) const = default;
 };
 
@@ -52,6 +73,9 @@ struct Material {
 // components are finite and not negative (it multiplies linear HDR colour). Files refuse what
 // breaks it, naming the field (material_json); the documents never hold it.
 bool isValidMaterial(const Material& material);
+// Every layer value (each base colour component too) in [0, 1]. Checked whether or not
+// the material is layered, so a file never holds a bad value waiting to be switched on.
+bool isValidLayers(const Layers& layers);
 
 // A scene's materials are named and shared: an object refers to one by id, several objects may
 // refer to the same one, and editing it changes every object that uses it. Ids are unique within a
