@@ -1,6 +1,6 @@
 // Environment import: a file or folder -> a sanitised, seamless cube (import.h). The pieces live
 // beside it: decode.cpp (pixels and colour), face_files.cpp (six face files), layouts.cpp (crosses
-// and strips), latlong.cpp (lat-long conversion).
+// and strips), latlong.cpp and latlong_*.cpp (lat-long conversion).
 #include "mipgloss/io/import.h"
 
 #include "decode.h"

@@ -22,9 +22,10 @@ inline constexpr int kLatLongStripRows = 256;
 // needed (the gather: a cube about as fine as the image or finer).
 bool latLongStreams(int width, int height, int faceSize);
 
-// The scatter fed strip by strip (latlong.cpp, "Scatter, strip by strip"): the same cube, to the
-// bit, as latLongToCube of the whole image in strips of kLatLongStripRows. Strips come in order,
-// each sanitised except for +Inf; finish replaces +Inf by the image's largest finite value.
+// The scatter fed strip by strip (latlong_scatter.cpp, "Scatter, strip by strip"): the same
+// cube, to the bit, as latLongToCube of the whole image in strips of kLatLongStripRows. Strips
+// come in order, each sanitised except for +Inf; finish replaces +Inf by the image's largest
+// finite value.
 // Throws std::invalid_argument for strips out of order or finish before the last row.
 class LatLongStream {
 public:

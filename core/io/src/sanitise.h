@@ -1,5 +1,5 @@
 // The decoded image type and the one sanitising rule for every pixel mipgloss reads, apart from
-// the decoder (decode.h) so that the conversions built on them (latlong.cpp) need no OpenImageIO
+// the decoder (decode.h) so that the conversions built on them (latlong*.cpp) need no OpenImageIO
 // header. Internal to the io library; implemented in decode.cpp.
 #pragma once
 

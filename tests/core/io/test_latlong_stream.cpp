@@ -1,5 +1,5 @@
 // The lat-long scatter fed strip by strip as a file is decoded (io_detail::LatLongStream,
-// core/io/src/latlong.h; the method: latlong.cpp, "Scatter, strip by strip", and
+// core/io/src/latlong.h; the method: latlong_scatter.cpp, "Scatter, strip by strip", and
 // docs/big-environments.md). Each strip is clamped to a lower bound T_k of the bright threshold T
 // known when it arrives, and the difference min(L, T) − min(L, T_k) of the pixels above T_k is
 // scattered once T is known; strips with too many such pixels, or +Inf, and the first and last
