@@ -143,6 +143,12 @@ cat > $lb/two.mglib <<'J'
                 "tint": [1, 0.8, 0.3], "sharperAtGrazing": false},
                {"name": "Chalk", "lambda": 7.5, "phongExponent": 1.2, "mode": "normal", "useIrradiance": true, "tint": [1, 1, 1]}]}
 J
+cat > $lb/layered.mglib <<'J'
+{"format": "mipgloss-library", "version": 2, "materials": [
+  {"name": "Car paint", "lambda": 0, "layers": {"baseColor": [0.6, 0.05, 0.02], "metallic": 0, "roughness": 0.45,
+   "specularExponent": 8.7, "specular": 0.05, "coat": 1, "coatRoughness": 0.03, "coatExponent": 457000}},
+  {"name": "Gold", "layers": {"baseColor": [1, 0.766, 0.336], "metallic": 1, "roughness": 0, "specularExponent": null}}]}
+J
 printf '{"format": "mipgloss-library", "version": 1, "materials": []}' > $lb/empty.mglib
 printf '{"format": "mipgloss-library", "version": 1, "materials": [{"name": "A"}, {"name": "A"}]}' > $lb/duplicate.mglib
 printf '{"format": "mipgloss-library", "version": 1, "materials": [{"name": "M", "lambda": 2, "phongExponent": 12345}]}' > $lb/exponent-disagrees.mglib

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -36,10 +37,22 @@ bool isValidMaterial(const Material& material) {
     return isValidLayers(material.layers);
 }
 
-bool isValidLayers(const Layers& layers) {
-    auto unit = [](float v) { return std::isfinite(v) && v >= 0.0f && v <= 1.0f; };
-    return unit(layers.baseColor.r) && unit(layers.baseColor.g) && unit(layers.baseColor.b) && unit(layers.metallic) && unit(layers.roughness) && unit(layers.specular) && unit(layers.coat) &&
-           unit(layers.coatRoughness);
+bool isValidLayers(const Layers& layers) { return layersProblem(layers).empty(); }
+
+std::string layersProblem(const Layers& layers) {
+    const std::pair<const char*, float> values[] = {
+        {"base colour red", layers.baseColor.r}, {"base colour green", layers.baseColor.g},
+        {"base colour blue", layers.baseColor.b}, {"metallic", layers.metallic},
+        {"roughness", layers.roughness},          {"specular", layers.specular},
+        {"coat", layers.coat},                    {"coat roughness", layers.coatRoughness},
+    };
+    for (const auto& [name, value] : values)
+        if (!(std::isfinite(value) && value >= 0.0f && value <= 1.0f)) {
+            std::ostringstream text;
+            text << name << ' ' << value << " is not in [0, 1]";
+            return text.str();
+        }
+    return {};
 }
 
 const char* toneMapName(ToneMap map) {

@@ -610,7 +610,7 @@ TEST(SceneFile, EnvironmentRotationMovedToTheDisplaySettings) {
     QFile in(QString::fromStdString(file.string()));
     ASSERT_TRUE(in.open(QIODevice::ReadOnly));
     const QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
-    EXPECT_EQ(root.value("version").toInt(), kSceneVersionRotationInDisplay);
+    EXPECT_EQ(root.value("version").toInt(), kSceneVersion);
     EXPECT_DOUBLE_EQ(root.value("display").toObject().value("environmentRotationDegrees").toDouble(), 170.0);
     EXPECT_FALSE(root.value("environment").toObject().contains("rotationDegrees"));
 
@@ -618,6 +618,37 @@ TEST(SceneFile, EnvironmentRotationMovedToTheDisplaySettings) {
         "display": {"environmentRotationDegrees": "east"}})");
     EXPECT_NE(notNumber.find("bad.json"), std::string::npos) << notNumber;
     EXPECT_NE(notNumber.find("environmentRotationDegrees"), std::string::npos) << notNumber;
+}
+
+// Version 5: a layered material round-trips with every parameter; a bad layer value is an error
+// naming the key; an older scene (no "layers") keeps its single-lobe look.
+TEST(SceneFile, LayeredMaterialsRoundTripAndBadLayersAreRefused) {
+    QTemporaryDir dir;
+    Scene scene;
+    SceneObject ball;
+    ball.name = "ball";
+    ball.mesh = std::make_shared<const Mesh>(makeSphere(8, 16));
+    ball.meshSource = "builtin:sphere";
+    Material paint;
+    paint.layered = true;
+    paint.layers = {Rgb(0.1f, 0.3f, 0.7f), 0.25f, 0.4f, 0.05f, 0.8f, 0.02f};
+    scene.addObject(ball, paint);
+    const fs::path file = fs::path(dir.path().toStdString()) / "layered.mipgloss";
+    saveScene(scene, file);
+    const Scene back = loadScene(file);
+    ASSERT_EQ(back.objects.size(), 1u);
+    EXPECT_EQ(back.materialOf(back.objects[0]), paint);
+
+    const std::string bad = loadError(dir, "bad.json", R"({"format": "mipgloss-scene", "version": 5,
+        "materials": [{"name": "m", "layers": {"coatRoughness": -1}}],
+        "objects": [{"mesh": "builtin:sphere", "material": "m"}]})");
+    EXPECT_NE(bad.find("bad.json"), std::string::npos) << bad;
+    EXPECT_NE(bad.find("materials[0].layers.coatRoughness"), std::string::npos) << bad;
+
+    const Scene old = loadScene(writeScene(dir, "v4.json", R"({"format": "mipgloss-scene", "version": 4,
+        "materials": [{"name": "m", "lambda": 3}], "objects": [{"mesh": "builtin:sphere", "material": "m"}]})"));
+    EXPECT_FALSE(old.materialOf(old.objects[0]).layered);
+    EXPECT_EQ(old.materialOf(old.objects[0]).lambda, 3.0f);
 }
 
 TEST(SceneFile, MaterialNamesMustResolveAndBeUnique) {

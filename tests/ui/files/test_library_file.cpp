@@ -15,6 +15,7 @@
 #include <QJsonObject>
 #include <QTemporaryDir>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -141,8 +142,8 @@ TEST(LibraryFile, UnreadableFilesAreRefusedAndKept) {
         {"array.json", "[1, 2]", "top level is not a JSON object"},
         {"scene.json", R"({"format": "mipgloss-scene", "version": 3})", "\"mipgloss-scene\", not \"mipgloss-library\""},
         {"noformat.json", R"({"materials": []})", "no \"format\""},
-        {"newer.json", R"({"format": "mipgloss-library", "version": 2, "materials": []})",
-         "version 2 is newer than this program reads (1)"},
+        {"newer.json", R"({"format": "mipgloss-library", "version": 3, "materials": []})",
+         "version 3 is newer than this program reads (2)"},
         {"noversion.json", R"({"format": "mipgloss-library", "materials": []})", "\"version\""},
         {"nomaterials.json", R"({"format": "mipgloss-library", "version": 1})", "\"materials\" must be an array"},
         {"materials-object.json", R"({"format": "mipgloss-library", "version": 1, "materials": {}})",
@@ -220,6 +221,61 @@ TEST(LibraryFile, SaveRefusesWhatWouldNotLoadAndKeepsTheOldFile) {
     MaterialLibrary badTint = fiveMaterials();
     badTint.entries[2].material.tint = Rgb(1.0f, -1.0f, 1.0f);
     refused(badTint, "tint");
+}
+
+// Layered materials (version 2): every parameter round-trips exactly, the file names them as
+// material_json.h says, and a version 1 file (no "layers") loads its single-lobe materials as ever.
+TEST(LibraryFile, LayeredMaterialsRoundTripEveryParameter) {
+    MaterialLibrary library = fiveMaterials();
+    Material paint;
+    paint.layered = true;
+    paint.layers = {Rgb(0.6f, 0.05f, 0.02f), 0.0f, 0.45f, 0.05f, 1.0f, 0.03f};
+    library.entries.push_back({"car paint", paint});
+    Material gold;
+    gold.layered = true;
+    gold.useIrradiance = true;
+    gold.layers = {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.0f, 0.04f, 0.0f, 0.05f};  // a mirror-smooth metal
+    library.entries.push_back({"polished gold", gold});
+    EXPECT_EQ(libraryFromJson(libraryToJson(library), "x.json"), library);
+
+    const QJsonArray materials = QJsonDocument::fromJson(libraryToJson(library)).object().value("materials").toArray();
+    const QJsonObject layers = materials.at(5).toObject().value("layers").toObject();
+    EXPECT_DOUBLE_EQ(layers.value("roughness").toDouble(), 0.45f);
+    EXPECT_DOUBLE_EQ(layers.value("coat").toDouble(), 1.0);
+    EXPECT_NEAR(layers.value("specularExponent").toDouble(), 0.37 * (std::pow(0.45, -4) - 1), 1e-3);
+    EXPECT_TRUE(materials.at(6).toObject().value("layers").toObject().value("specularExponent").isNull());
+    EXPECT_FALSE(materials.at(0).toObject().contains("layers")) << "single-lobe materials write none";
+
+    const MaterialLibrary old = libraryFromJson(oneMaterial(R"("name": "a", "lambda": 2)"), "v1.json");
+    ASSERT_EQ(old.entries.size(), 1u);
+    EXPECT_FALSE(old.entries[0].material.layered);
+}
+
+TEST(LibraryFile, OutOfRangeLayerValuesAreRefusedNamingTheKey) {
+    QTemporaryDir dir;
+    const std::string metallic =
+        refusal(dir, "metallic.json", oneMaterial(R"("name": "a", "layers": {"metallic": 1.5})"));
+    EXPECT_NE(metallic.find("materials[0].layers.metallic"), std::string::npos) << metallic;
+    EXPECT_NE(metallic.find("1.5"), std::string::npos) << metallic;
+    const std::string colour =
+        refusal(dir, "colour.json", oneMaterial(R"("name": "a", "layers": {"baseColor": [0.5, -0.1, 0.2]})"));
+    EXPECT_NE(colour.find("materials[0].layers.baseColor[1]"), std::string::npos) << colour;
+    const std::string nan = refusal(dir, "nan.json", oneMaterial(R"("name": "a", "layers": {"roughness": "rough"})"));
+    EXPECT_NE(nan.find("materials[0].layers.roughness"), std::string::npos) << nan;
+    const std::string shape = refusal(dir, "shape.json", oneMaterial(R"("name": "a", "layers": 3)"));
+    EXPECT_NE(shape.find("materials[0].layers"), std::string::npos) << shape;
+
+    MaterialLibrary bad = fiveMaterials();
+    bad.entries[1].material.layered = true;
+    bad.entries[1].material.layers.coat = -0.5f;
+    const fs::path file = fs::path(dir.path().toStdString()) / "save.json";
+    try {
+        saveLibrary(bad, file);
+        ADD_FAILURE() << "saved a coat of -0.5";
+    } catch (const LibraryFileError& e) {
+        EXPECT_NE(std::string(e.what()).find("coat -0.5 is not in [0, 1]"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(file));
 }
 
 TEST(LibraryFile, DefaultPathIsInTheUsersDataFolder) {

@@ -37,7 +37,7 @@ std::string unsavableMaterial(const Material& material) {
     const glm::vec3& tint = material.tint;
     if (glm::any(glm::isnan(tint)) || glm::any(glm::isinf(tint)) || glm::any(glm::lessThan(tint, glm::vec3(0.0f))))
         return "the tint must be finite and not negative";
-    return {};
+    return layersProblem(material.layers);
 }
 
 }  // namespace

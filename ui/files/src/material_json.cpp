@@ -1,5 +1,7 @@
 #include "material_json.h"
 
+#include "mipgloss/ibl/specular.h"
+
 #include <QJsonDocument>
 
 #include <glm/vector_relational.hpp>
@@ -32,7 +34,7 @@ QJsonArray vec3ToJson(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
 
 QJsonObject materialToJson(const Material& m) {
     const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
-    return QJsonObject{
+    QJsonObject out{
         {"lambda", m.lambda},
         {"phongExponent", std::isinf(exponent) ? QJsonValue(QJsonValue::Null) : QJsonValue(exponent)},
         {"mode", lookupModeName(m.mode)},
@@ -40,6 +42,21 @@ QJsonObject materialToJson(const Material& m) {
         {"tint", vec3ToJson(m.tint)},
         {"sharperAtGrazing", m.sharperAtGrazing},
     };
+    if (!m.layered) return out;
+    const Layers& l = m.layers;
+    // The lobes' exponents are for a reader of the file, like "phongExponent"; roughness decides.
+    auto exponentJson = [](double n) { return std::isinf(n) ? QJsonValue(QJsonValue::Null) : QJsonValue(n); };
+    out.insert("layers", QJsonObject{
+                             {"baseColor", vec3ToJson(l.baseColor)},
+                             {"metallic", l.metallic},
+                             {"roughness", l.roughness},
+                             {"specularExponent", exponentJson(roughnessToExponent(l.roughness))},
+                             {"specular", l.specular},
+                             {"coat", l.coat},
+                             {"coatRoughness", l.coatRoughness},
+                             {"coatExponent", exponentJson(roughnessToExponent(l.coatRoughness))},
+                         });
+    return out;
 }
 
 void JsonReader::warn(const std::string& text) const {
@@ -147,7 +164,34 @@ Material JsonReader::material(const QJsonObject& o, const std::string& where) co
     m.tint = vec3(o, "tint", where, m.tint);
     if (glm::any(glm::lessThan(m.tint, glm::vec3(0.0f)))) fail("\"" + where + ".tint\" has a negative component");
     m.sharperAtGrazing = boolean(o, "sharperAtGrazing", where, m.sharperAtGrazing);
+    const QJsonValue layers = o.value(QLatin1String("layers"));
+    if (layers.isUndefined()) return m;
+    const std::string at = keyName(where, "layers");
+    if (!layers.isObject()) fail("\"" + at + "\" must be an object");
+    m.layered = true;
+    m.layers = this->layers(layers.toObject(), at);
     return m;
+}
+
+Layers JsonReader::layers(const QJsonObject& o, const std::string& where) const {
+    Layers l;
+    // Each a number in [0, 1], never clamped: an absurd value is an error naming the key.
+    auto unit = [&](const char* key, float fallback) {
+        const double v = number(o, key, where, fallback);
+        if (!(v >= 0.0 && v <= 1.0)) fail("\"" + keyName(where, key) + "\" is " + show(v) + ": it must be in [0, 1]");
+        return static_cast<float>(v);
+    };
+    l.baseColor = vec3(o, "baseColor", where, l.baseColor);
+    for (int c = 0; c < 3; ++c)
+        if (!(l.baseColor[c] >= 0.0f && l.baseColor[c] <= 1.0f))
+            fail("\"" + keyName(where, "baseColor") + "[" + std::to_string(c) + "]\" is " + show(l.baseColor[c]) +
+                 ": a base colour component must be in [0, 1] (linear)");
+    l.metallic = unit("metallic", l.metallic);
+    l.roughness = unit("roughness", l.roughness);
+    l.specular = unit("specular", l.specular);
+    l.coat = unit("coat", l.coat);
+    l.coatRoughness = unit("coatRoughness", l.coatRoughness);
+    return l;
 }
 
 double JsonReader::lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const {

@@ -35,7 +35,11 @@ std::string jsonText(const QJsonValue& v);
 QJsonArray vec3ToJson(const glm::vec3& v);
 
 // A material's fields (without a name): λ, its Phong exponent for the reader (null for the mirror),
-// the mode, irradiance, tint and grazing options.
+// the mode, irradiance, tint and grazing options; a layered material adds "layers":
+//   {"baseColor": [r, g, b], "metallic": m, "roughness": r, "specularExponent": n | null,
+//    "specular": f0, "coat": c, "coatRoughness": r, "coatExponent": n | null}
+// (every value in [0, 1]; the exponents, n = roughnessToExponent, are for readers and not read).
+// A file without "layers" holds the paper's single-lobe material, as every older file does.
 QJsonObject materialToJson(const Material& material);
 
 // Reads the values of one JSON file, each checked for its type and range; every error names the
@@ -90,6 +94,8 @@ public:
 
     // The fields of materialToJson, at `where` ("materials[2]"). Optional keys default to Material{}.
     Material material(const QJsonObject& o, const std::string& where) const;
+    // A layered material's "layers" object (scene version 5, library version 2), at `where`.
+    Layers layers(const QJsonObject& o, const std::string& where) const;
     // A λ (a material's or the background's) in today's meaning: an error unless the file holds a
     // number in its version's range, converted from a version 1 scene's face size (scene_file.h).
     double lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const;

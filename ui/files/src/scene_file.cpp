@@ -317,6 +317,8 @@ void saveScene(const Scene& scene, const fs::path& file) {
         if (o.meshSource.empty())
             throw SceneFileError(file, "object \"" + o.name + "\" has no mesh file to refer to");
         checkLambda(scene.materialOf(o).lambda, "objects[" + std::to_string(i) + "].material.lambda");
+        if (const std::string problem = layersProblem(scene.materialOf(o).layers); !problem.empty())
+            throw SceneFileError(file, "cannot save \"objects[" + std::to_string(i) + "].material.layers\": " + problem);
     }
     try {
         writeFileAtomically(file, sceneToJson(scene, file));

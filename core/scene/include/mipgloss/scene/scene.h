@@ -76,6 +76,8 @@ bool isValidMaterial(const Material& material);
 // Every layer value (each base colour component too) in [0, 1]. Checked whether or not
 // the material is layered, so a file never holds a bad value waiting to be switched on.
 bool isValidLayers(const Layers& layers);
+// What breaks that rule, in words ("metallic 1.5 is not in [0, 1]"), or "" when nothing does.
+std::string layersProblem(const Layers& layers);
 
 // A scene's materials are named and shared: an object refers to one by id, several objects may
 // refer to the same one, and editing it changes every object that uses it. Ids are unique within a

@@ -1,13 +1,16 @@
-// Material library files: JSON, format "mipgloss-library", version 1.
+// Material library files: JSON, format "mipgloss-library", version 2 (version 1 still loads).
 //
 //   {
-//     "format": "mipgloss-library", "version": 1,
+//     "format": "mipgloss-library", "version": 2,
 //     "materials": [{"name": "Gold", "lambda": 3, "phongExponent": 767, "mode": "reflect",
-//                    "useIrradiance": false, "tint": [1, 0.8, 0.3], "sharperAtGrazing": false}]
+//                    "useIrradiance": false, "tint": [1, 0.8, 0.3], "sharperAtGrazing": false,
+//                    "layers": {"baseColor": [1, 0.78, 0.34], "metallic": 1, "roughness": 0.25, ...}}]
 //   }
 //
-// The material fields are the scene file's (scene_file.h, version 3), with the same checks: λ in
-// [0, kMaxLambda] (never silently clamped), "phongExponent" informative, tint finite and >= 0.
+// The material fields are the scene file's (scene_file.h; material_json.h), with the same checks:
+// λ in [0, kMaxLambda] (never silently clamped), "phongExponent" informative, tint finite and >= 0,
+// every layer value in [0, 1]. Version 2 added layered materials ("layers", optional); a version 1
+// file has none and loads as it always did. Files are written as version 2.
 // Names must be valid (library.h materialNameProblem) and unique.
 //
 // Reading is all-or-nothing and never modifies the file: anything unreadable (not JSON, not a
@@ -28,7 +31,7 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kLibraryFormat = "mipgloss-library";
-inline constexpr int kLibraryVersion = 1;
+inline constexpr int kLibraryVersion = 2;
 
 class LibraryFileError : public FileError {
 public:

@@ -1,14 +1,15 @@
-// Scene files: JSON, format "mipgloss-scene", version 4 (versions 1 to 3 still load, see below).
+// Scene files: JSON, format "mipgloss-scene", version 5 (versions 1 to 4 still load, see below).
 //
 //   {
-//     "format": "mipgloss-scene", "version": 4,
+//     "format": "mipgloss-scene", "version": 5,
 //     "environment": {"source": "env/sky.exr" | "builtin:courtyard", "layout": "auto",
 //                     "handedness": "right", "faceSize": 128, "builder": "phong"},
 //     "display": {"showBackground": true, "backgroundLambda": 0, "exposureEv": 0,
 //                 "toneMap": "aces", "samples": 4, "environmentRotationDegrees": 0},
 //     "materials": [{"name": "gold", "library": "Gold",
 //                    "lambda": 3, "phongExponent": 767, "mode": "reflect" | "normal",
-//                    "useIrradiance": false, "tint": [r, g, b], "sharperAtGrazing": false}],
+//                    "useIrradiance": false, "tint": [r, g, b], "sharperAtGrazing": false,
+//                    "layers": {...} (optional, version 5: a layered material, material_json.h)}],
 //     "objects": [{"name": "bunny", "mesh": "meshes/bunny.obj" | "builtin:teapot" | "builtin:sphere",
 //                  "visible": true,
 //                  "transform": {"translation": [x, y, z], "rotationDegrees": [x, y, z], "scale": 1},
@@ -79,7 +80,9 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 4;
+inline constexpr int kSceneVersion = 5;
+// The version that added layered materials ("layers" in a material; files without them load alike).
+inline constexpr int kSceneVersionLayered = 5;
 // The version that named materials and shared them between objects.
 inline constexpr int kSceneVersionNamedMaterials = 3;
 // The version that moved the environment's rotation into the display settings.
