@@ -19,6 +19,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <charconv>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -29,6 +30,8 @@ const char* const kLibraryUsage = R"(
   mipgloss library list LIB.mglib [--json]
   mipgloss library add LIB.mglib --name NAME [--lambda L | --exponent N] [--mode reflect|normal]
                        [--tint R,G,B] [--irradiance] [--grazing]
+                       [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0]
+                       [--coat W] [--coat-roughness R]
   mipgloss library remove LIB.mglib NAME
   mipgloss library rename LIB.mglib OLD NEW
   mipgloss library thumbnails LIB.mglib [--env FILE] [--size PX] [--env-size N] --out DIR
@@ -39,12 +42,17 @@ library: the material library files mipgloss-gui keeps (format "mipgloss-library
   and left as it is.
   list           one material a line, tab-separated: name, lambda, Phong exponent n (mirror for
                  lambda 0), mode, tint (linear R,G,B), then "irradiance" and "sharper-at-grazing"
-                 when set; --json prints the library as JSON instead
+                 when set; a layered material: name, "layered", then base-color R,G,B, metallic,
+                 roughness, specular, coat, coat-roughness (and "irradiance"); --json prints the
+                 library as JSON instead
   add            adds material NAME (a missing LIB.mglib is created; a name already there is an
                  error); --lambda L (0 = mirror .. 8, default 0) or --exponent N (Phong, >= 0,
                  "mirror"), --mode (default reflect; normal with a high lambda is the paper's
                  diffuse), --tint (default 1,1,1), --irradiance (normal mode: the irradiance map
-                 instead of the chain), --grazing (sharper toward grazing angles)
+                 instead of the chain), --grazing (sharper toward grazing angles); any of
+                 --base-color, --metallic, --roughness, --specular, --coat, --coat-roughness
+                 makes it a layered material (as for render; --lambda/--exponent then set its
+                 glossy layer's lobe, --irradiance its diffuse base from the irradiance map)
   remove         removes material NAME
   rename         renames material OLD to NEW (NEW must be free)
   thumbnails     one PNG per material in DIR (created if missing), PX x PX pixels (default
@@ -80,13 +88,24 @@ std::string exponentText(float lambda) {
     return buffer;
 }
 
+// The shortest text that reads back as the same float (so `list` round-trips every value).
 std::string numberText(float value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+    return std::string(text, end);
+}
+
+// A layered material's values, tab-separated as `list` prints them (every one, so a script can
+// read them back).
+std::string layersText(const Layers& l, const std::string& separator) {
+    return "base-color " + numberText(l.baseColor.r) + ',' + numberText(l.baseColor.g) + ',' +
+           numberText(l.baseColor.b) + separator + "metallic " + numberText(l.metallic) + separator + "roughness " +
+           numberText(l.roughness) + separator + "specular " + numberText(l.specular) + separator + "coat " +
+           numberText(l.coat) + separator + "coat-roughness " + numberText(l.coatRoughness);
 }
 
 std::string describe(const Material& m) {
+    if (m.layered) return "layered: " + layersText(m.layers, ", ");
     return "lambda " + numberText(m.lambda) + ", n " + exponentText(m.lambda) + ", " + lookupModeName(m.mode);
 }
 
@@ -120,6 +139,11 @@ int list(Args args) {
     }
     for (const LibraryMaterial& entry : library.entries) {
         const Material& m = entry.material;
+        if (m.layered) {
+            std::cout << entry.name << "\tlayered\t" << layersText(m.layers, "\t")
+                      << (m.useIrradiance ? "\tirradiance" : "") << '\n';
+            continue;
+        }
         std::cout << entry.name << '\t' << "lambda " << numberText(m.lambda) << '\t' << "n " << exponentText(m.lambda)
                   << '\t' << lookupModeName(m.mode) << '\t' << "tint " << numberText(m.tint.r) << ','
                   << numberText(m.tint.g) << ',' << numberText(m.tint.b) << (m.useIrradiance ? "\tirradiance" : "")
@@ -133,10 +157,12 @@ int add(Args args) {
     std::optional<std::string> name;
     std::optional<std::string> lambdaFlag;  // which of --lambda and --exponent set it
     Material material;
+    LayerFlags layerFlags;
     while (!args.empty()) {
         const std::string a = args.next();
         auto value = [&] { return args.value(a); };
         if (a == "--name") name = requireName(a, value());
+        else if (readLayerFlag(a, value, layerFlags)) continue;
         else if (a == "--lambda" || a == "--exponent") {
             if (lambdaFlag) throw UsageError(a + ": λ is already set by " + *lambdaFlag + "; give --lambda or --exponent once");
             lambdaFlag = a;
@@ -148,6 +174,11 @@ int add(Args args) {
         else throw UsageError("library add: unknown argument '" + a + "'");
     }
     if (!name) throw UsageError("library add needs --name NAME");
+    if (layerFlags.any()) {
+        const std::optional<float> lambda = lambdaFlag ? std::optional(material.lambda) : std::nullopt;
+        material.lambda = 0.0f;
+        applyLayerFlags(layerFlags, lambda, lambdaFlag.value_or(""), material);
+    }
     if (material.useIrradiance && material.mode != LookupMode::Normal)
         std::cerr << "mipgloss: warning: --irradiance shows only with --mode normal\n";
     // A library that does not exist yet starts empty; one that exists and cannot be read is refused.

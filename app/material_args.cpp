@@ -1,6 +1,7 @@
 #include "material_args.h"
 
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -48,6 +49,40 @@ Rgb parseTint(const std::string& flag, const std::string& value) {
     }
     if (parts.size() != 3 || value.back() == ',') throw UsageError(rule);
     return Rgb(parts[0], parts[1], parts[2]);
+}
+
+bool readLayerFlag(const std::string& flag, const std::function<std::string()>& value, LayerFlags& flags) {
+    auto unit = [&] { return parseFloat(flag, value(), 0.0f, 1.0f); };
+    if (flag == "--base-color") {
+        const Rgb c = parseTint(flag, value());
+        if (c.r > 1.0f || c.g > 1.0f || c.b > 1.0f)
+            throw UsageError(flag + " needs three numbers from 0 to 1 (linear RGB; a surface reflects at most what "
+                                    "reaches it), got " + std::to_string(c.r) + "," + std::to_string(c.g) + "," +
+                             std::to_string(c.b));
+        flags.baseColor = c;
+    } else if (flag == "--metallic") flags.metallic = unit();
+    else if (flag == "--roughness") flags.roughness = unit();
+    else if (flag == "--specular") flags.specular = unit();
+    else if (flag == "--coat") flags.coat = unit();
+    else if (flag == "--coat-roughness") flags.coatRoughness = unit();
+    else return false;
+    return true;
+}
+
+void applyLayerFlags(const LayerFlags& flags, std::optional<float> lambda, const std::string& lambdaFlag,
+                     Material& material) {
+    if (flags.roughness && lambda)
+        throw UsageError(lambdaFlag + " and --roughness both set the specular lobe; give one");
+    if (!material.layered) material.layers = Layers{};
+    material.layered = true;
+    Layers& l = material.layers;
+    if (flags.baseColor) l.baseColor = *flags.baseColor;
+    if (flags.metallic) l.metallic = *flags.metallic;
+    if (flags.roughness) l.roughness = *flags.roughness;
+    if (lambda) l.roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(*lambda)));
+    if (flags.specular) l.specular = *flags.specular;
+    if (flags.coat) l.coat = *flags.coat;
+    if (flags.coatRoughness) l.coatRoughness = *flags.coatRoughness;
 }
 
 }  // namespace mipgloss::app

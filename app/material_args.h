@@ -7,6 +7,8 @@
 
 #include "mipgloss/scene/scene.h"
 
+#include <functional>
+#include <optional>
 #include <string>
 
 namespace mipgloss::app {
@@ -21,5 +23,21 @@ float parseExponentAsLambda(const std::string& flag, const std::string& value);
 LookupMode parseMode(const std::string& flag, const std::string& value);
 // --tint R,G,B: three finite numbers >= 0, linear RGB.
 Rgb parseTint(const std::string& flag, const std::string& value);
+
+// A layered material's flags (layered.h), the same for `render` and `library add`:
+//   --base-color R,G,B (linear, each in [0, 1]), --metallic M, --roughness R, --specular F0,
+//   --coat W, --coat-roughness R (each in [0, 1]).
+struct LayerFlags {
+    std::optional<Rgb> baseColor;
+    std::optional<float> metallic, roughness, specular, coat, coatRoughness;
+    bool any() const { return baseColor || metallic || roughness || specular || coat || coatRoughness; }
+};
+// True, with the value read through `value` into `flags`, when `flag` is one of them.
+bool readLayerFlag(const std::string& flag, const std::function<std::string()>& value, LayerFlags& flags);
+// Makes `material` layered, the flags given over its layers (Layers{} when it was single-lobe). A
+// specular lobe set by --lambda/--exponent (`lambda`, from `lambdaFlag`) becomes its roughness
+// (exponentToRoughness); with --roughness too it is a UsageError.
+void applyLayerFlags(const LayerFlags& flags, std::optional<float> lambda, const std::string& lambdaFlag,
+                     Material& material);
 
 }  // namespace mipgloss::app

@@ -41,7 +41,9 @@ namespace mipgloss::app {
 
 const char* const kRenderUsage = R"(
   mipgloss render [SCENE.mipgloss] [--env FILE] [--mesh FILE]... [--library LIB.mglib --material NAME]
-                  [--lambda L | --exponent N] [--mode reflect|normal] [--size WxH] [--env-size N] [--builder NAME]
+                  [--lambda L | --exponent N] [--mode reflect|normal]
+                  [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
+                  [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr
@@ -60,6 +62,12 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  face size (0 = mirror; 0 to 8)
   --exponent N   every object's lobe by its Phong exponent instead (N >= 0; "mirror" or inf)
   --mode M       reflect (reflection vector) or normal (surface normal) for every object
+  --base-color R,G,B  --metallic M  --roughness R  --specular F0  --coat W  --coat-roughness R
+                 every object wears a layered material (docs/layered-materials.md): a diffuse
+                 base of colour R,G,B (linear, 0 to 1) under a glossy layer with Fresnel (F0
+                 --specular, default 0.04; a metal's F0 is its base colour), and a clear coat of
+                 weight W; roughness 0 (mirror) to 1; --lambda/--exponent then set the glossy
+                 layer's lobe instead of --roughness. Defaults: 0.8,0.8,0.8, 0, 0.5, 0.04, 0, 0.05
   --size WxH     image size (default 1024x384 for the default scene, else 800x600)
   --env-size N   base face size of the cube (default: the scene's, 128)
   --builder NAME mip builder (default phong; --method is the old name)
@@ -119,6 +127,8 @@ int runRender(Args args, const char* argv0) {
     std::optional<fs::path> aovPath, libraryPath;
     std::optional<std::string> libraryMaterial;
     std::optional<LookupMode> mode;
+    std::string lambdaFlag;
+    LayerFlags layerFlags;
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
     std::optional<Builder> builder;
@@ -130,8 +140,9 @@ int runRender(Args args, const char* argv0) {
         if (a == "--env") envPath = value();
         else if (a == "--mesh") meshPaths.emplace_back(value());
         else if (a == "--out") outPath = value();
-        else if (a == "--lambda") lambda = parseLambda(a, value());
-        else if (a == "--exponent") lambda = parseExponentAsLambda(a, value());
+        else if (a == "--lambda") lambda = parseLambda(a, value()), lambdaFlag = a;
+        else if (a == "--exponent") lambda = parseExponentAsLambda(a, value()), lambdaFlag = a;
+        else if (readLayerFlag(a, value, layerFlags)) continue;
         else if (a == "--library") libraryPath = value();
         else if (a == "--material") libraryMaterial = value();
         else if (a == "--aov") aovPath = value();
@@ -209,7 +220,12 @@ int runRender(Args args, const char* argv0) {
     if (envSize) scene.environment.faceSize = *envSize;
     if (builder) scene.environment.builder = *builder;
     for (NamedMaterial& m : scene.materials) {
-        if (lambda) m.material.lambda = *lambda;
+        // With a layer flag every material is layered, --lambda/--exponent its specular lobe.
+        if (layerFlags.any() || (lambda && m.material.layered)) {
+            applyLayerFlags(layerFlags, lambda, lambdaFlag, m.material);
+        } else if (lambda) {
+            m.material.lambda = *lambda;
+        }
         if (mode) m.material.mode = *mode;
     }
     if (exposure) scene.display.exposureEv = *exposure;

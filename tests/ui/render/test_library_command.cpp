@@ -5,6 +5,7 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/library.h"
 #include "mipgloss/ui/library_file.h"
+#include "mipgloss/ibl/specular.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -150,6 +151,50 @@ TEST(LibraryCommand, AddListRenameRemove) {
     EXPECT_EQ(filesIn(lib.parent_path()), std::vector<std::string>{"lib.json"});
 }
 
+// Every layered parameter given to `library add` comes back from the file, from `list` (whose numbers
+// read back as the same floats) and from `list --json`; a bad one is a usage error naming the flag.
+TEST(LibraryCommand, LayeredParametersRoundTrip) {
+    test::TempDir dir;
+    const fs::path lib = dir / "layered.mglib";
+    CliResult r = runCli({"library", "add", q(lib), "--name", "car paint", "--base-color", "0.6,0.05,0.02",
+                          "--metallic", "0.1", "--roughness", "0.45", "--specular", "0.05", "--coat", "0.9",
+                          "--coat-roughness", "0.03"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runCli({"library", "add", q(lib), "--name", "gold", "--base-color", "1,0.766,0.336", "--metallic", "1",
+                "--exponent", "200"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const MaterialLibrary library = ui::loadLibrary(lib);
+    ASSERT_EQ(library.entries.size(), 2u);
+    const Material& paint = library.entries[0].material;
+    EXPECT_TRUE(paint.layered);
+    const Layers expected{Rgb(0.6f, 0.05f, 0.02f), 0.1f, 0.45f, 0.05f, 0.9f, 0.03f};
+    EXPECT_EQ(paint.layers, expected);
+    const Layers& gold = library.entries[1].material.layers;
+    EXPECT_NEAR(roughnessToExponent(gold.roughness), 200.0, 200.0 * 1e-5) << "--exponent sets the glossy lobe";
+    EXPECT_EQ(gold.metallic, 1.0f);
+
+    r = runCli({"library", "list", q(lib)});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> listed = lines(r.out);
+    ASSERT_EQ(listed.size(), 2u) << r.out;
+    EXPECT_EQ(listed[0], "car paint\tlayered\tbase-color 0.6,0.05,0.02\tmetallic 0.1\troughness 0.45\tspecular 0.05"
+                         "\tcoat 0.9\tcoat-roughness 0.03");
+    const std::string roughnessField = listed[1].substr(listed[1].find("roughness ") + 10);
+    EXPECT_EQ(std::stof(roughnessField.substr(0, roughnessField.find('\t'))), gold.roughness) << listed[1];
+    r = runCli({"library", "list", q(lib), "--json"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(ui::libraryFromJson(QByteArray::fromStdString(r.out), "stdout"), library);
+
+    for (const QStringList& bad : {QStringList{"--metallic", "1.5"}, QStringList{"--coat", "nan"},
+                                   QStringList{"--base-color", "0.5,-1,0"}, QStringList{"--roughness", "0.3", "--lambda", "2"}}) {
+        r = runCli(QStringList{"library", "add", q(lib), "--name", "bad"} + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad.join(' ').toStdString();
+        EXPECT_NE(r.err.find(bad[0].toStdString() == "--roughness" ? "--lambda" : bad[0].toStdString()), std::string::npos)
+            << r.err;
+    }
+    EXPECT_EQ(ui::loadLibrary(lib), library) << "nothing added by the refused commands";
+}
+
 TEST(LibraryCommand, MistakesExitOneForTheFileAndTwoForUsage) {
     test::TempDir dir;
     const fs::path lib = dir / "lib.json";
@@ -211,7 +256,7 @@ TEST(LibraryCommand, CorruptLibraryIsRefusedByEveryCommandAndKept) {
     };
     const std::vector<Corrupt> corrupt{
         {"truncated.json", valid.left(valid.size() * 2 / 3), "not valid JSON"},
-        {"newer.json", QByteArray(valid).replace("\"version\": 1", "\"version\": 2"), "version 2 is newer"},
+        {"newer.json", QByteArray(valid).replace("\"version\": 2", "\"version\": 3"), "version 3 is newer"},
         {"absurd.json", QByteArray(valid).replace("\"lambda\": 6", "\"lambda\": 60"), "\"materials[3].lambda\" is 60"},
         {"scene.json", R"({"format": "mipgloss-scene", "version": 3, "objects": []})", "not a material library"},
     };
