@@ -76,7 +76,11 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   --aov FILE.exr per pixel, float channels dirX dirY dirZ (the unit direction the environment is
                  read at, in the frame of `mipgloss bake`'s faces), exponent (the Phong exponent
                  of the lobe shown; 0 where no object, inf for a mirror) and exact (1 where the
-                 pixel is meant to equal that lobe at that direction)
+                 pixel is meant to equal that lobe at that direction); with a layered material,
+                 per layer X in diffuse, specular, coat: X.dirX X.dirY X.dirZ (the direction it
+                 read), X.exponent (its lobe; 1 for diffuse) and X.weight.R/G/B (what its lobe is
+                 multiplied by), and NdotV; a pixel marked exact is then Σ weight ⊙ lobe(dir),
+                 and the single-lobe channels describe its specular layer
   The picture is the settled one: every material's own lobe cube is made first.
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
@@ -275,14 +279,32 @@ int runRender(Args args, const char* argv0) {
     }
     if (aovPath) {
         const ui::AovImage aov = renderer.renderAov(scene, camera, environment, width, height);
+        // The single-lobe account, and for a scene with a layered material each layer's (render's
+        // usage text): X.dirX X.dirY X.dirZ X.exponent X.weight.R X.weight.G X.weight.B, and NdotV.
+        std::vector<std::string> names{"dirX", "dirY", "dirZ", "exponent", "exact"};
+        const std::pair<const char*, const ui::AovImage::Layer*> layers[] = {
+            {"diffuse", &aov.diffuse}, {"specular", &aov.specular}, {"coat", &aov.coat}};
+        if (aov.layered) {
+            for (const auto& [layer, data] : layers)
+                for (const char* field : {".dirX", ".dirY", ".dirZ", ".exponent", ".weight.R", ".weight.G", ".weight.B"})
+                    names.push_back(std::string(layer) + field);
+            names.push_back("NdotV");
+        }
         std::vector<float> values;
-        values.reserve(static_cast<std::size_t>(aov.width) * static_cast<std::size_t>(aov.height) * 5);
+        values.reserve(static_cast<std::size_t>(aov.width) * static_cast<std::size_t>(aov.height) * names.size());
         for (int y = aov.height - 1; y >= 0; --y)
             for (int x = 0; x < aov.width; ++x) {
                 const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(aov.width) + static_cast<std::size_t>(x);
                 values.insert(values.end(), {aov.direction[i].x, aov.direction[i].y, aov.direction[i].z, aov.exponent[i], aov.exact[i]});
+                if (!aov.layered) continue;
+                for (const auto& [layer, data] : layers) {
+                    const glm::vec3& d = data->direction[i];
+                    const glm::vec3& w = data->weight[i];
+                    values.insert(values.end(), {d.x, d.y, d.z, data->exponent[i], w.r, w.g, w.b});
+                }
+                values.push_back(aov.cosView[i]);
             }
-        writeFloatChannels(*aovPath, aov.width, aov.height, {"dirX", "dirY", "dirZ", "exponent", "exact"}, values);
+        writeFloatChannels(*aovPath, aov.width, aov.height, names, values);
     }
     if (!quiet) {
         const ui::RenderCounters& c = renderer.counters();

@@ -1,6 +1,10 @@
 #include "mipgloss/scene/lookup_plan.h"
 
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
+#include "mipgloss/scene/layered.h"
+
+#include <sstream>
 
 namespace mipgloss {
 
@@ -28,6 +32,23 @@ ObjectLookup planBackground(float lambda, int chainFaceSize) {
     return planLookup(seen, false, chainFaceSize);
 }
 
+LayeredLookup planLayered(const Material& material, bool irradianceReady, int chainFaceSize) {
+    auto single = [&](double lambda, LookupMode mode, bool useIrradiance) {
+        Material m;
+        m.lambda = static_cast<float>(lambda);
+        m.mode = mode;
+        m.useIrradiance = useIrradiance;
+        return planLookup(m, irradianceReady, chainFaceSize);
+    };
+    const Layers& l = material.layers;
+    LayeredLookup plan;
+    plan.diffuse = single(diffuseLambda(), LookupMode::Normal, material.useIrradiance);
+    plan.specular = single(specularLambda(l), LookupMode::Reflect, false);
+    plan.hasCoat = hasCoat(l);
+    if (plan.hasCoat) plan.coat = single(coatLambda(l), LookupMode::Reflect, false);
+    return plan;
+}
+
 std::string shaderDefines() {
     std::string text;
     auto define = [&](const char* name, int value) {
@@ -39,6 +60,16 @@ std::string shaderDefines() {
     define("TONE_MAP_LINEAR", static_cast<int>(ToneMap::Linear));
     define("TONE_MAP_REINHARD", static_cast<int>(ToneMap::Reinhard));
     define("TONE_MAP_ACES", static_cast<int>(ToneMap::Aces));
+    define("SPLIT_SUM_LAMBDA_STEPS", SplitSumTable::kLambdaSteps);
+    define("SPLIT_SUM_COS_STEPS", SplitSumTable::kCosSteps);
+    auto defineFloat = [&](const char* name, double value) {
+        std::ostringstream number;
+        number.precision(9);
+        number << std::showpoint << value;
+        text += "#define " + std::string(name) + " " + number.str() + "\n";
+    };
+    defineFloat("MAX_LAMBDA", kMaxLambda);
+    defineFloat("COAT_F0", kDielectricF0);
     return text;
 }
 

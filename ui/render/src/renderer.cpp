@@ -2,6 +2,8 @@
 
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
+#include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/lookup_plan.h"
 
 #include <QFile>
@@ -58,6 +60,11 @@ struct Renderer::Impl {
     const CubeMap* uploadedIrradiance = nullptr;
     std::shared_ptr<const PreparedEnvironment> environment;  // keeps what is uploaded alive
 
+    // Texture units besides 0 (the chain) and 1 (the irradiance map).
+    static constexpr GLuint kLobeUnit = 2, kSplitSumUnit = 3, kCoatChainUnit = 4, kCoatLobeUnit = 5,
+                            kDiffuseChainUnit = 6, kDiffuseLobeUnit = 7;
+    GLuint splitSumTexture = 0;      // the split-sum table (specular.h), once a layered material is drawn
+
     std::map<int, GLuint> samplers;  // level key -> sampler with GL_TEXTURE_MIN_LOD = that level
     GLuint lobeSampler = 0;          // trilinear, for lobe cubes (their own box mips)
 
@@ -102,12 +109,89 @@ struct Renderer::Impl {
         return &it->second;
     }
 
-    // Binds a lobe cube to unit 2 (uLobe) with its trilinear sampler; unit 0 stays active.
-    void bindLobe(const GpuLobe& lobe) {
-        gl->glActiveTexture(GL_TEXTURE2);
+    // Binds a lobe cube to `unit` (2: uLobe; 5, 7: a layered material's coat and diffuse lobes)
+    // with its trilinear sampler; unit 0 stays active.
+    void bindLobe(const GpuLobe& lobe, GLuint unit = kLobeUnit) {
+        gl->glActiveTexture(GL_TEXTURE0 + unit);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, lobe.texture);
-        gl->glBindSampler(2, lobeSampler);
+        gl->glBindSampler(unit, lobeSampler);
         gl->glActiveTexture(GL_TEXTURE0);
+    }
+
+    // Binds the chain (or, for a mirror, the mirror texture) to `unit` with the sampler holding
+    // the plan's MIN_LOD; unit 0 stays active.
+    void bindChain(const ObjectLookup& plan, GLuint unit) {
+        gl->glActiveTexture(GL_TEXTURE0 + unit);
+        gl->glBindTexture(GL_TEXTURE_CUBE_MAP, plan.mirror ? mirrorTexture : environmentTexture);
+        gl->glBindSampler(unit, sampler(plan.minLevel));
+        gl->glActiveTexture(GL_TEXTURE0);
+    }
+
+    // The split-sum table (specular.h) as an RG32F texture on unit 3, made the first time a layered
+    // material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
+    void bindSplitSum() {
+        if (splitSumTexture == 0) {
+            const SplitSumTable& table = SplitSumTable::shared();
+            gl->glGenTextures(1, &splitSumTexture);
+            gl->glBindTexture(GL_TEXTURE_2D, splitSumTexture);
+            gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+            gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, SplitSumTable::kCosSteps, SplitSumTable::kLambdaSteps, 0,
+                             GL_RG, GL_FLOAT, table.nodes().data());
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        }
+        gl->glActiveTexture(GL_TEXTURE0 + kSplitSumUnit);
+        gl->glBindTexture(GL_TEXTURE_2D, splitSumTexture);
+        gl->glBindSampler(kSplitSumUnit, 0);
+        gl->glActiveTexture(GL_TEXTURE0);
+    }
+
+    // Sets a layered material's uniforms and binds its three lookups; true when every lookup it
+    // makes reads its own lobe cube (or the irradiance map): the settled picture.
+    bool bindLayered(QOpenGLShaderProgram& program, const Material& m, bool irradianceReady) {
+        bindSplitSum();
+        const LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
+        const GpuLobe* specular = plan.specular.wantsLobeCube ? lobeFor(plan.specular.lambda) : nullptr;
+        const GpuLobe* coat = plan.hasCoat && plan.coat.wantsLobeCube ? lobeFor(plan.coat.lambda) : nullptr;
+        const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
+        const GpuLobe* diffuse = !diffuseIrradiance && plan.diffuse.wantsLobeCube ? lobeFor(plan.diffuse.lambda) : nullptr;
+        auto set1i = [&](const char* name, bool v) { gl->glUniform1i(program.uniformLocation(name), v ? 1 : 0); };
+        auto set1f = [&](const char* name, double v) {
+            gl->glUniform1f(program.uniformLocation(name), static_cast<float>(v));
+        };
+        auto set3f = [&](const char* name, const Rgb& v) {
+            gl->glUniform3fv(program.uniformLocation(name), 1, glm::value_ptr(v));
+        };
+        set1i("uLayered", true);
+        set3f("uF0", specularF0(m.layers));
+        set3f("uDiffuseColour", diffuseColour(m.layers));
+        set1f("uSpecularLambda", plan.specular.lambda);
+        set1f("uCoat", plan.hasCoat ? m.layers.coat : 0.0f);
+        set1f("uCoatLambda", plan.coat.lambda);
+        set1i("uUseLobe", specular);
+        set1i("uLobeExact", specular && specular->source->holdsLobe);
+        set1f("uExponent", plan.specular.exponent);
+        set1i("uUseCoatLobe", coat);
+        set1i("uCoatLobeExact", coat && coat->source->holdsLobe);
+        set1f("uCoatExponent", plan.coat.exponent);
+        set1i("uUseDiffuseLobe", diffuse);
+        set1i("uDiffuseLobeExact", diffuse && diffuse->source->holdsLobe);
+        set1i("uDiffuseIrradiance", diffuseIrradiance);
+        set1i("uSharperAtGrazing", false);
+        bindChain(plan.specular, 0);
+        if (specular) bindLobe(*specular);
+        if (plan.hasCoat) {
+            bindChain(plan.coat, kCoatChainUnit);
+            if (coat) bindLobe(*coat, kCoatLobeUnit);
+        }
+        if (!diffuseIrradiance) {
+            bindChain(plan.diffuse, kDiffuseChainUnit);
+            if (diffuse) bindLobe(*diffuse, kDiffuseLobeUnit);
+        }
+        return (specular || plan.specular.mirror) && (!plan.hasCoat || coat || plan.coat.mirror) &&
+               (diffuseIrradiance || diffuse);
     }
 
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
@@ -130,6 +214,7 @@ struct Renderer::Impl {
         const int locUseLobe = program.uniformLocation("uUseLobe");
         const int locLobeExact = program.uniformLocation("uLobeExact");
         const int locExponent = program.uniformLocation("uExponent");
+        const int locLayered = program.uniformLocation("uLayered");
         // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
         // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
         gl->glUniform1f(program.uniformLocation("uLevelOffset"),
@@ -145,6 +230,23 @@ struct Renderer::Impl {
             }
             const GpuMesh& mesh = gpuMesh(object.mesh);
             const Material& m = scene.materialOf(object);
+            const glm::mat4 objectModel = object.transform.matrix();
+            if (m.layered) {
+                gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(objectModel));
+                gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE,
+                                       glm::value_ptr(glm::mat3(objectModel) /
+                                                      std::max(std::abs(object.transform.scale), 1e-30f)));
+                const bool settled = bindLayered(program, m, irradianceReady);
+                gl->glBindVertexArray(mesh.vao);
+                gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+                if (aov) continue;
+                ++counters.objectsDrawn;
+                ++counters.drawCalls;
+                if (settled) ++counters.objectsSettled;
+                else ++counters.objectsFromChain;
+                continue;
+            }
+            gl->glUniform1i(locLayered, 0);
             const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
             const GpuLobe* lobe = plan.wantsLobeCube ? lobeFor(plan.lambda) : nullptr;
             const glm::mat4 model = object.transform.matrix();
@@ -324,6 +426,15 @@ QByteArray shaderSource(const char* path) {
     QFile file(QString::fromUtf8(path));
     if (!file.open(QIODevice::ReadOnly)) return {};
     QByteArray source = file.readAll();
+    // #include "layered.glsl" (GLSL has no includes): the file's text in its place, then #line so
+    // the compiler's line numbers stay those of the including file.
+    const QByteArray include = "#include \"layered.glsl\"\n";
+    if (const qsizetype at = source.indexOf(include); at >= 0) {
+        QFile shared(QStringLiteral(":/mipgloss/shaders/layered.glsl"));
+        if (!shared.open(QIODevice::ReadOnly)) return {};
+        const int lineAfter = static_cast<int>(source.left(at).count('\n')) + 2;
+        source.replace(at, include.size(), shared.readAll() + "#line " + QByteArray::number(lineAfter) + "\n");
+    }
     const qsizetype versionEnd = source.indexOf('\n') + 1;
     // #line keeps the compiler's line numbers those of the file.
     source.insert(versionEnd, QByteArray::fromStdString(shaderDefines() + "#line 2\n"));
@@ -384,6 +495,11 @@ bool Renderer::initialize(std::string* error) {
         program->setUniformValue("uEnvironment", 0);
         program->setUniformValue("uIrradiance", 1);
         program->setUniformValue("uLobe", 2);
+        program->setUniformValue("uSplitSum", 3);
+        program->setUniformValue("uCoatChain", 4);
+        program->setUniformValue("uCoatLobe", 5);
+        program->setUniformValue("uDiffuseChain", 6);
+        program->setUniformValue("uDiffuseLobe", 7);
     }
     impl_->backgroundProgram->bind();
     impl_->backgroundProgram->setUniformValue("uEnvironment", 0);
@@ -413,6 +529,8 @@ void Renderer::destroy() {
     d.gl->glDeleteTextures(1, &d.environmentTexture);
     d.gl->glDeleteTextures(1, &d.mirrorTexture);
     d.gl->glDeleteTextures(1, &d.irradianceTexture);
+    d.gl->glDeleteTextures(1, &d.splitSumTexture);
+    d.splitSumTexture = 0;
     d.gl->glDeleteVertexArrays(1, &d.emptyVao);
     d.objectProgram.reset();
     d.backgroundProgram.reset();
@@ -596,12 +714,13 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     if (!d.gl || width <= 0 || height <= 0 || !hasEnvironment()) return aov;
     auto* gl = d.gl;
     d.collectMeshes();
-    // A single-sample float target of two colours and depth, made for this call.
-    GLuint fbo = 0, colour[2] = {0, 0}, depth = 0;
+    // A single-sample float target of aov.frag's seven colours and depth, made for this call.
+    constexpr int kTargets = 7;
+    GLuint fbo = 0, colour[kTargets] = {}, depth = 0;
     gl->glGenFramebuffers(1, &fbo);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl->glGenTextures(2, colour);
-    for (int i = 0; i < 2; ++i) {
+    gl->glGenTextures(kTargets, colour);
+    for (int i = 0; i < kTargets; ++i) {
         gl->glBindTexture(GL_TEXTURE_2D, colour[i]);
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -613,8 +732,9 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     gl->glBindRenderbuffer(GL_RENDERBUFFER, depth);
     gl->glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
     gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    gl->glDrawBuffers(2, buffers);
+    GLenum buffers[kTargets];
+    for (int i = 0; i < kTargets; ++i) buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+    gl->glDrawBuffers(kTargets, buffers);
     gl->glViewport(0, 0, width, height);
     gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -636,15 +756,17 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     gl->glBindSampler(0, 0);
 
     const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    std::vector<glm::vec4> first(count), second(count);
+    std::vector<std::vector<glm::vec4>> targets(kTargets, std::vector<glm::vec4>(count));
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl->glReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl->glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, first.data());
-    gl->glReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl->glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, second.data());
+    for (int i = 0; i < kTargets; ++i) {
+        gl->glReadBuffer(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+        gl->glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, targets[static_cast<std::size_t>(i)].data());
+    }
+    const std::vector<glm::vec4>& first = targets[0];
+    const std::vector<glm::vec4>& second = targets[1];
     gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl->glDeleteFramebuffers(1, &fbo);
-    gl->glDeleteTextures(2, colour);
+    gl->glDeleteTextures(kTargets, colour);
     gl->glDeleteRenderbuffers(1, &depth);
 
     aov.width = width;
@@ -656,6 +778,29 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
         aov.direction[i] = glm::vec3(first[i]);
         aov.exponent[i] = first[i].w;
         aov.exact[i] = second[i].x;
+    }
+    aov.cosView.resize(count);
+    for (std::size_t i = 0; i < count; ++i) aov.cosView[i] = targets[3][i].w;
+    for (const SceneObject& object : scene.objects)
+        aov.layered = aov.layered || (object.visible && object.mesh && scene.materialOf(object).layered);
+    if (aov.layered) {
+        auto fill = [&](AovImage::Layer& layer, const std::vector<glm::vec4>& directions,
+                        const std::vector<glm::vec4>* exponents, const std::vector<glm::vec4>& weights) {
+            layer.direction.resize(count);
+            layer.exponent.resize(count);
+            layer.weight.resize(count);
+            for (std::size_t i = 0; i < count; ++i) {
+                layer.direction[i] = glm::vec3(directions[i]);
+                layer.exponent[i] = exponents ? (*exponents)[i].w : 0.0f;
+                layer.weight[i] = glm::vec3(weights[i]);
+            }
+        };
+        fill(aov.diffuse, targets[2], &targets[2], targets[3]);
+        fill(aov.specular, targets[0], nullptr, targets[4]);
+        fill(aov.coat, targets[5], &targets[5], targets[6]);
+        // The specular layer's lobe where the pixel is layered (its weight is set), else 0.
+        for (std::size_t i = 0; i < count; ++i)
+            if (aov.diffuse.exponent[i] != 0.0f) aov.specular.exponent[i] = first[i].w;
     }
     // A pixel beside the background or another lobe is not one lobe at one direction in the
     // picture (multisampling mixes them): not exact.

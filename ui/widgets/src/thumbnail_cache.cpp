@@ -73,7 +73,10 @@ void ThumbnailCache::setVisibleRows(std::function<std::vector<int>()> visibleRow
 }
 
 ThumbnailCache::Key ThumbnailCache::keyOf(const Material& m) {
-    return {m.lambda, static_cast<int>(m.mode), m.useIrradiance, m.tint.r, m.tint.g, m.tint.b, m.sharperAtGrazing};
+    const Layers& l = m.layers;
+    return {m.lambda,      static_cast<int>(m.mode), m.useIrradiance, m.tint.r,    m.tint.g,  m.tint.b,
+            m.sharperAtGrazing, m.layered,         l.baseColor.r,   l.baseColor.g, l.baseColor.b, l.metallic,
+            l.roughness,   l.specular,               l.coat,          l.coatRoughness};
 }
 
 QPixmap ThumbnailCache::thumbnail(const Material& material) const {

@@ -42,7 +42,17 @@ ObjectLookup planLookup(const Material& material, bool irradianceReady, int chai
 // cube once ready, the chain level standing in meanwhile; an invalid λ is sharp).
 ObjectLookup planBackground(float lambda, int chainFaceSize);
 
-// "#define LOOKUP_REFLECT 0" ... and "#define TONE_MAP_LINEAR 0" ..., one line each.
+// A layered material's three lookups (layered.h), each planned as the single lobe it reads: the
+// diffuse base by the normal at n = 1 (or the irradiance map once ready, when it asks), the
+// specular layer and the coat by R at their own λ. `coat` is meaningful only when hasCoat.
+struct LayeredLookup {
+    ObjectLookup diffuse, specular, coat;
+    bool hasCoat = false;
+};
+LayeredLookup planLayered(const Material& material, bool irradianceReady, int chainFaceSize);
+
+// "#define LOOKUP_REFLECT 0" ... and "#define TONE_MAP_LINEAR 0" ..., one line each; and the
+// split-sum table's shape and the coat's F0 for layered.glsl (specular.h).
 std::string shaderDefines();
 
 }  // namespace mipgloss

@@ -51,6 +51,18 @@ struct AovImage {
     std::vector<glm::vec3> direction;  // unit direction the environment is read at (baked frame)
     std::vector<float> exponent;       // the lobe shown; 0 where no object, +inf for a mirror
     std::vector<float> exact;          // 1 where the pixel is meant to equal that lobe there
+    // Per pixel, every object: N·v (the view's cosine with the shading normal).
+    std::vector<float> cosView;
+    // A layered material's layers (layered.h): the direction each read (the fields above are its
+    // specular layer), its lobe (diffuse: 1) and its weight; 0 elsewhere and for a layer the
+    // material lacks. At an exact pixel the picture is Σ weight ⊙ lobe(direction).
+    struct Layer {
+        std::vector<glm::vec3> direction;
+        std::vector<float> exponent;
+        std::vector<glm::vec3> weight;
+    };
+    Layer diffuse, specular, coat;
+    bool layered = false;  // some object drawn has a layered material
 };
 
 class Renderer {

@@ -80,8 +80,9 @@ signals:
     void environmentReady();
 
 private:
-    // Material is compared field by field (tint as three floats): the cache's key.
-    using Key = std::tuple<float, int, bool, float, float, float, bool>;
+    // Material is compared field by field (colours as three floats): the cache's key.
+    using Key = std::tuple<float, int, bool, float, float, float, bool, bool, float, float, float, float, float,
+                           float, float, float>;
     static Key keyOf(const Material& material);
     struct Picture {
         QPixmap pixmap;
