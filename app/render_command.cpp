@@ -11,6 +11,7 @@
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/scene/placement.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/library_file.h"
@@ -428,7 +429,19 @@ int runRenderBench(Args args, const char* argv0) {
         for (int i = 0; i < objects; ++i)
             scene.materialOf(scene.objects[static_cast<std::size_t>(i)]).lambda = lambdaOf(i);
     };
-    std::vector<double> shared, distinct, spread;
+    // And the layered material (layered.h) at the same scene: a plastic (diffuse + specular, two
+    // lookups) and a coated paint (three), every object the same material, λ of the specular 3.
+    auto setLayered = [&](bool on, float coat) {
+        for (int i = 0; i < objects; ++i) {
+            Material& m = scene.materialOf(scene.objects[static_cast<std::size_t>(i)]);
+            m.layered = on;
+            m.layers.baseColor = Rgb(0.7f, 0.1f, 0.05f);
+            m.layers.roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(3.0)));
+            m.layers.coat = coat;
+            m.layers.coatRoughness = 0.2f;
+        }
+    };
+    std::vector<double> shared, distinct, spread, plastic, coated;
     for (int round = 0; round < 3; ++round) {
         setLambdas([](int) { return 3.0f; });
         shared.push_back(timeFrames(scene));
@@ -436,13 +449,23 @@ int runRenderBench(Args args, const char* argv0) {
         distinct.push_back(timeFrames(scene));
         setLambdas([&](int i) { return 7.0f * static_cast<float>(i) / static_cast<float>(std::max(objects - 1, 1)); });
         spread.push_back(timeFrames(scene));
+        setLambdas([](int) { return 3.0f; });
+        setLayered(true, 0.0f);
+        plastic.push_back(timeFrames(scene));
+        setLayered(true, 1.0f);
+        coated.push_back(timeFrames(scene));
+        setLayered(false, 0.0f);
     }
-    for (auto* v : {&shared, &distinct, &spread}) std::sort(v->begin(), v->end());
+    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated}) std::sort(v->begin(), v->end());
     std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
               << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
               << distinct[1] / shared[1] << "\n"
               << objects << " lambdas spread over 0..7:   " << spread[1] << " ms/frame  ratio "
               << spread[1] / shared[1] << "\n"
+              << "layered, diffuse + specular:    " << plastic[1] << " ms/frame  ratio " << plastic[1] / shared[1]
+              << "\n"
+              << "layered, + clear coat:          " << coated[1] << " ms/frame  ratio " << coated[1] / shared[1]
+              << "\n"
               << "samplers created: " << renderer.counters().samplersCreated << "\n";
     return 0;
 }
