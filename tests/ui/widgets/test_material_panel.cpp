@@ -3,6 +3,7 @@
 // slider drag as one undo step, renaming, assigning and splitting shared materials, and the
 // sRGB <-> linear conversion.
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
 #include "widget_test_support.h"
@@ -22,6 +23,7 @@
 #include <QUndoStack>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -429,4 +431,63 @@ TEST(MaterialPanel, StepsInOneBoxWhileFocusedAreOneUndoStep) {
     doc.undoStack()->undo();
     EXPECT_EQ(doc.object(1).transform, start);
     EXPECT_DOUBLE_EQ(x->value(), static_cast<double>(start.translation.x));
+}
+
+// The layered editor: "Kind" switches and shows only that kind's editor; roughness, λ and n stay in
+// step both ways; every value edit is one undo step; the document never holds an out-of-range value.
+TEST(MaterialPanel, LayeredEditorSpeaksRoughnessMetalAndCoatKeptInStep) {
+    ShownPanel shown(0);
+    ASSERT_TRUE(shown.exposed());
+    SceneDocument& doc = shown.doc;
+    MaterialPanel& panel = shown.panel;
+    auto* kind = child<QComboBox>(panel, "kindCombo");
+    auto* layeredEditor = child<QWidget>(panel, "layeredEditor");
+    auto* singleEditor = child<QWidget>(panel, "singleLobeEditor");
+    auto* roughness = child<QDoubleSpinBox>(panel, "roughnessSpin");
+    auto* roughnessSlider = child<QSlider>(panel, "roughnessSlider");
+    auto* lambda = child<QDoubleSpinBox>(panel, "roughnessLambdaSpin");
+    auto* exponent = child<QDoubleSpinBox>(panel, "roughnessExponentSpin");
+    auto* metallic = child<QDoubleSpinBox>(panel, "metallicSpin");
+    auto* coat = child<QDoubleSpinBox>(panel, "coatSpin");
+    ASSERT_TRUE(kind && layeredEditor && singleEditor && roughness && roughnessSlider && lambda && exponent &&
+                metallic && coat);
+    EXPECT_FALSE(layeredEditor->isVisible());
+    EXPECT_TRUE(singleEditor->isVisible());
+
+    kind->setCurrentIndex(kind->findData(true));
+    emit kind->activated(kind->currentIndex());
+    ASSERT_TRUE(doc.materialOf(0).layered);
+    EXPECT_TRUE(layeredEditor->isVisible());
+    EXPECT_FALSE(singleEditor->isVisible());
+    EXPECT_FALSE(doc.materialOf(1).layered) << "only the selected object's material";
+
+    typeInto(roughness, QStringLiteral("0.3"));
+    EXPECT_FLOAT_EQ(doc.materialOf(0).layers.roughness, 0.3f);
+    EXPECT_EQ(roughnessSlider->value(), 30);
+    EXPECT_NEAR(exponent->value(), roughnessToExponent(0.3), 0.006);
+    EXPECT_NEAR(lambda->value(), exponentToLambda(roughnessToExponent(0.3)), 0.006);
+
+    typeInto(lambda, QStringLiteral("3"));  // λ 3: n = 767
+    EXPECT_NEAR(doc.materialOf(0).layers.roughness, exponentToRoughness(lambdaToExponent(3.0)), 1e-6);
+    EXPECT_NEAR(exponent->value(), 767.0, 0.01);
+    typeInto(exponent, QStringLiteral("mirror"));
+    EXPECT_EQ(doc.materialOf(0).layers.roughness, 0.0f);
+    EXPECT_EQ(lambda->value(), 0.0);
+
+    const int steps = doc.undoStack()->count();
+    typeInto(metallic, QStringLiteral("1"));
+    typeInto(coat, QStringLiteral("0.75"));
+    EXPECT_EQ(doc.materialOf(0).layers.metallic, 1.0f);
+    EXPECT_EQ(doc.materialOf(0).layers.coat, 0.75f);
+    EXPECT_EQ(doc.undoStack()->count(), steps + 2);
+    typeInto(coat, QStringLiteral("7"));  // the box stops at 1
+    EXPECT_LE(doc.materialOf(0).layers.coat, 1.0f);
+    EXPECT_TRUE(isValidMaterial(doc.materialOf(0)));
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.materialOf(0).layers.metallic, 0.0f);
+    EXPECT_EQ(metallic->value(), 0.0);
+    // For a human to look at: the panel as it shows a layered material.
+    std::filesystem::create_directories(MIPGLOSS_TEST_OUTPUT_DIR);
+    panel.grab().save(QStringLiteral(MIPGLOSS_TEST_OUTPUT_DIR "/material_panel_layered.png"));
 }

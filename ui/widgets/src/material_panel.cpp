@@ -2,6 +2,7 @@
 
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
 #include "mipgloss/ui/scene_document.h"
 #include "edit_sessions.h"
 
@@ -150,6 +151,23 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     usersRow->addWidget(makeUnique_);
     form->addRow(QString(), usersRow);
 
+    // What kind of material: layered (colour, metal, roughness) or the paper's single lobe.
+    kind_ = new QComboBox(materialBox);
+    kind_->setObjectName(QStringLiteral("kindCombo"));
+    kind_->addItem(tr("Layered: colour, metal, roughness"), true);
+    kind_->addItem(tr("Single lobe (the paper's)"), false);
+    kind_->setToolTip(tr("Layered: a coloured matte base under a glossy reflection that grows toward the "
+                         "silhouette, with an optional clear coat, set as in glTF and Substance. Single lobe: "
+                         "one reflection of a chosen blur and tint, as in Ashikhmin & Ghosh's Figure 1."));
+    form->addRow(tr("Kind"), kind_);
+    buildLayeredEditor(materialBox);
+    form->addRow(layered_);
+    singleLobe_ = new QWidget(materialBox);
+    singleLobe_->setObjectName(QStringLiteral("singleLobeEditor"));
+    auto* single = new QFormLayout(singleLobe_);
+    single->setContentsMargins(0, 0, 0, 0);
+    form->addRow(singleLobe_);
+
     lambdaSlider_ = new QSlider(Qt::Horizontal, materialBox);
     lambdaSlider_->setObjectName(QStringLiteral("lambdaSlider"));
     lambdaSlider_->setSingleStep(1);
@@ -162,7 +180,7 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     auto* lambdaRow = new QHBoxLayout;
     lambdaRow->addWidget(lambdaSlider_, 1);
     lambdaRow->addWidget(lambdaSpin_);
-    form->addRow(tr("Blur λ"), lambdaRow);
+    single->addRow(tr("Blur λ"), lambdaRow);
     lambdaSlider_->setToolTip(
         tr("Blur λ: the Phong lobe n = 3·128²·4^−λ − 1, the same under any environment and face "
            "size. 0 is a mirror; each +1 makes the lobe twice as wide (n about 4× smaller); from "
@@ -179,27 +197,27 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     exponentSpin_->setToolTip(
         tr("Phong exponent n of the blur, λ = log2(128·√3) − ½·log2(n + 1); the same lobe under "
            "any environment. \"mirror\" (or \"inf\", ∞) is λ 0; n = 0 is a uniform hemisphere."));
-    form->addRow(tr("Phong exponent n"), exponentSpin_);
+    single->addRow(tr("Phong exponent n"), exponentSpin_);
 
     mode_ = new QComboBox(materialBox);
     mode_->setObjectName(QStringLiteral("modeCombo"));
     mode_->addItem(tr("reflection vector (glossy)"), static_cast<int>(LookupMode::Reflect));
     mode_->addItem(tr("surface normal (diffuse)"), static_cast<int>(LookupMode::Normal));
-    form->addRow(tr("Look up by"), mode_);
+    single->addRow(tr("Look up by"), mode_);
 
     irradiance_ = new QCheckBox(tr("Use irradiance map"), materialBox);
     irradiance_->setObjectName(QStringLiteral("irradianceCheck"));
     irradiance_->setToolTip(tr("Normal mode: the exact cosine-weighted irradiance instead of the "
                                "chain at λ"));
-    form->addRow(QString(), irradiance_);
+    single->addRow(QString(), irradiance_);
 
     grazing_ = new QCheckBox(tr("Sharper at grazing angles"), materialBox);
     grazing_->setObjectName(QStringLiteral("grazingCheck"));
-    form->addRow(QString(), grazing_);
+    single->addRow(QString(), grazing_);
 
     tint_ = new QPushButton(tr("Choose…"), materialBox);
     tint_->setObjectName(QStringLiteral("tintButton"));
-    form->addRow(tr("Tint"), tint_);
+    single->addRow(tr("Tint"), tint_);
     editorLayout->addWidget(materialBox);
 
     // Placement.
@@ -264,6 +282,12 @@ MaterialPanel::MaterialPanel(SceneDocument* document, QWidget* parent)
     connect(grazing_, &QCheckBox::toggled, this,
             [this](bool on) { editMaterial([on](Material& m) { m.sharperAtGrazing = on; }); });
     connect(tint_, &QPushButton::clicked, this, &MaterialPanel::chooseTint);
+    connect(kind_, &QComboBox::activated, this, [this](int item) {
+        const bool on = kind_->itemData(item).toBool();
+        editMaterial([on](Material& m) { m.layered = on; });
+        refreshMaterial();
+    });
+    connectLayeredEditor();
     for (int a = 0; a < 3; ++a) {
         // Each box edits only its own component of the document's value, so the others' rounding
         // (the boxes show 1 to 5 decimals) never leaks into the transform.
@@ -351,6 +375,13 @@ void MaterialPanel::refreshMaterial() {
     irradiance_->setChecked(m.useIrradiance);
     irradiance_->setEnabled(m.mode == LookupMode::Normal);
     grazing_->setChecked(m.sharperAtGrazing);
+    {
+        const QSignalBlocker block(kind_);
+        kind_->setCurrentIndex(kind_->findData(m.layered));
+    }
+    layered_->setVisible(m.layered);
+    singleLobe_->setVisible(!m.layered);
+    refreshLayers(m);
     const QColor color = colorFromLinear(m.tint);
     tint_->setIcon(swatch(color));
     tint_->setToolTip(tr("Linear RGB %1, %2, %3 (sRGB %4)")
@@ -432,6 +463,161 @@ void MaterialPanel::renameMaterial() {
     // Refused or made: show the document's name.
     const QSignalBlocker block(materialName_);
     materialName_->setText(QString::fromStdString(document_->namedMaterialOf(index)->name));
+}
+
+namespace {
+constexpr int kUnitSliderSteps = 100;  // a [0, 1] slider's steps
+}  // namespace
+
+void MaterialPanel::buildLayeredEditor(QWidget* parent) {
+    layered_ = new QWidget(parent);
+    layered_->setObjectName(QStringLiteral("layeredEditor"));
+    auto* form = new QFormLayout(layered_);
+    form->setContentsMargins(0, 0, 0, 0);
+    // A [0, 1] value as a slider and a box side by side.
+    auto unitRow = [&](const QString& name, QSlider*& slider, QDoubleSpinBox*& spin, const QString& tip) {
+        slider = new QSlider(Qt::Horizontal, layered_);
+        slider->setObjectName(name + QStringLiteral("Slider"));
+        slider->setRange(0, kUnitSliderSteps);
+        slider->setPageStep(kUnitSliderSteps / 10);
+        spin = makeSpin(layered_, name + QStringLiteral("Spin"), 0.0, 1.0, 3, 0.01);
+        slider->setToolTip(tip);
+        spin->setToolTip(tip);
+        auto* row = new QHBoxLayout;
+        row->addWidget(slider, 1);
+        row->addWidget(spin);
+        return row;
+    };
+
+    baseColor_ = new QPushButton(tr("Choose…"), layered_);
+    baseColor_->setObjectName(QStringLiteral("baseColorButton"));
+    form->addRow(tr("Base colour"), baseColor_);
+
+    form->addRow(tr("Metallic"),
+                 unitRow(QStringLiteral("metallic"), metallicSlider_, metallic_,
+                         tr("0 for plastic, paint, wood, stone, skin; 1 for bare metal. A metal has no matte "
+                            "layer: its reflection takes the base colour.")));
+
+    form->addRow(tr("Roughness"),
+                 unitRow(QStringLiteral("roughness"), roughnessSlider_, roughness_,
+                         tr("How blurred the reflection is: 0 a mirror, 0.2 polished, 0.5 satin, 1 fully "
+                            "matte. λ and n beside it are the same setting in mipgloss's own terms.")));
+    roughnessLambda_ = makeSpin(layered_, QStringLiteral("roughnessLambdaSpin"), 0.0, exponentToLambda(0.0), 2, 0.05);
+    roughnessLambda_->setToolTip(tr("The reflection's blur as λ, the scale single-lobe materials use: each +1 "
+                                    "makes it twice as wide"));
+    roughnessExponent_ = new ExponentSpinBox(layered_);
+    roughnessExponent_->setObjectName(QStringLiteral("roughnessExponentSpin"));
+    roughnessExponent_->setDecimals(2);
+    roughnessExponent_->setKeyboardTracking(false);
+    roughnessExponent_->setRange(0.0, kExponentBoxTop);
+    roughnessExponent_->setToolTip(tr("The reflection's blur as a Phong exponent: larger is sharper; \"mirror\" "
+                                      "is roughness 0"));
+    // Labels rather than prefixes: the exponent box reads "mirror" typed on its own.
+    auto* lobeRow = new QHBoxLayout;
+    lobeRow->addWidget(new QLabel(QStringLiteral("λ"), layered_));
+    lobeRow->addWidget(roughnessLambda_, 1);
+    lobeRow->addWidget(new QLabel(QStringLiteral("n"), layered_));
+    lobeRow->addWidget(roughnessExponent_, 1);
+    form->addRow(QString(), lobeRow);
+
+    specular_ = makeSpin(layered_, QStringLiteral("specularSpin"), 0.0, 1.0, 3, 0.005);
+    specular_->setToolTip(tr("How much a non-metal reflects seen head-on: 0.04 suits most plastic, paint, glass "
+                             "and skin, water is 0.02, gems up to about 0.08. Every reflection still grows "
+                             "toward the silhouette."));
+    form->addRow(tr("Specular"), specular_);
+
+    form->addRow(tr("Clear coat"),
+                 unitRow(QStringLiteral("coat"), coatSlider_, coat_,
+                         tr("A clear varnish over everything, as on car paint, lacquered wood or a glazed "
+                            "pot: 0 none, 1 a full coat.")));
+    coatRoughness_ = makeSpin(layered_, QStringLiteral("coatRoughnessSpin"), 0.0, 1.0, 3, 0.01);
+    coatRoughness_->setToolTip(tr("How blurred the varnish's own reflection is; usually close to 0."));
+    form->addRow(tr("Coat roughness"), coatRoughness_);
+
+    layeredIrradiance_ = new QCheckBox(tr("Matte base from the irradiance map"), layered_);
+    layeredIrradiance_->setObjectName(QStringLiteral("layeredIrradianceCheck"));
+    layeredIrradiance_->setToolTip(tr("Light the matte base with the exact irradiance map instead of the "
+                                      "chain's widest lobe (they differ slightly; the map costs a build)"));
+    form->addRow(QString(), layeredIrradiance_);
+}
+
+void MaterialPanel::connectLayeredEditor() {
+    for (QWidget* w : std::initializer_list<QWidget*>{metallicSlider_, metallic_, roughnessSlider_, roughness_,
+                                                      roughnessLambda_, roughnessExponent_, specular_, coatSlider_,
+                                                      coat_, coatRoughness_})
+        sessions_->track(w);
+    auto unit = [this](QSlider* slider, QDoubleSpinBox* spin, float Layers::*field) {
+        connect(slider, &QSlider::valueChanged, this, [this, slider, field](int v) {
+            const float value = static_cast<float>(v) / kUnitSliderSteps;
+            editLayers([field, value](Layers& l) { l.*field = value; }, slider);
+        });
+        connect(spin, &QDoubleSpinBox::valueChanged, this, [this, spin, field](double v) {
+            editLayers([field, v](Layers& l) { l.*field = static_cast<float>(v); }, spin);
+        });
+    };
+    unit(metallicSlider_, metallic_, &Layers::metallic);
+    unit(roughnessSlider_, roughness_, &Layers::roughness);
+    unit(coatSlider_, coat_, &Layers::coat);
+    connect(specular_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editLayers([v](Layers& l) { l.specular = static_cast<float>(v); }, specular_);
+    });
+    connect(coatRoughness_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editLayers([v](Layers& l) { l.coatRoughness = static_cast<float>(v); }, coatRoughness_);
+    });
+    connect(roughnessLambda_, &QDoubleSpinBox::valueChanged, this, [this](double lambda) {
+        const auto r = static_cast<float>(exponentToRoughness(lambdaToExponent(lambda)));
+        editLayers([r](Layers& l) { l.roughness = r; }, roughnessLambda_);
+    });
+    connect(roughnessExponent_, &QDoubleSpinBox::valueChanged, this, [this](double n) {
+        const auto r = n >= kExponentBoxTop ? 0.0f : static_cast<float>(exponentToRoughness(n));
+        editLayers([r](Layers& l) { l.roughness = r; }, roughnessExponent_);
+    });
+    connect(baseColor_, &QPushButton::clicked, this, &MaterialPanel::chooseBaseColor);
+    connect(layeredIrradiance_, &QCheckBox::toggled, this,
+            [this](bool on) { editMaterial([on](Material& m) { m.useIrradiance = on; }); });
+}
+
+void MaterialPanel::editLayers(const std::function<void(Layers&)>& edit, const QObject* from) {
+    editMaterial([&edit](Material& m) { edit(m.layers); }, from);
+    refreshMaterial();  // the other views of the same value (slider, box, λ, n)
+}
+
+void MaterialPanel::refreshLayers(const Material& m) {
+    const Layers& l = m.layers;
+    const QSignalBlocker b1(metallicSlider_), b2(metallic_), b3(roughnessSlider_), b4(roughness_),
+        b5(roughnessLambda_), b6(roughnessExponent_), b7(specular_), b8(coatSlider_), b9(coat_), b10(coatRoughness_),
+        b11(layeredIrradiance_);
+    metallicSlider_->setValue(static_cast<int>(std::lround(l.metallic * kUnitSliderSteps)));
+    metallic_->setValue(l.metallic);
+    roughnessSlider_->setValue(static_cast<int>(std::lround(l.roughness * kUnitSliderSteps)));
+    roughness_->setValue(l.roughness);
+    const double n = roughnessToExponent(l.roughness);
+    roughnessLambda_->setValue(exponentToLambda(n));
+    const double shownStep = std::pow(10.0, -roughnessExponent_->decimals());
+    roughnessExponent_->setValue(std::isinf(n) ? kExponentBoxTop : std::min(n, kExponentBoxTop - shownStep));
+    specular_->setValue(l.specular);
+    coatSlider_->setValue(static_cast<int>(std::lround(l.coat * kUnitSliderSteps)));
+    coat_->setValue(l.coat);
+    coatRoughness_->setValue(l.coatRoughness);
+    layeredIrradiance_->setChecked(m.useIrradiance);
+    const QColor color = colorFromLinear(l.baseColor);
+    baseColor_->setIcon(swatch(color));
+    baseColor_->setToolTip(tr("The surface's own colour: the matte layer of plastic, paint or wood, the "
+                              "reflection of a metal. Linear RGB %1, %2, %3 (sRGB %4)")
+                               .arg(l.baseColor.r, 0, 'f', 3)
+                               .arg(l.baseColor.g, 0, 'f', 3)
+                               .arg(l.baseColor.b, 0, 'f', 3)
+                               .arg(color.name()));
+}
+
+void MaterialPanel::chooseBaseColor() {
+    const int index = document_->selected();
+    if (!document_->isValidIndex(index)) return;
+    const QColor chosen = QColorDialog::getColor(colorFromLinear(document_->materialOf(index).layers.baseColor),
+                                                 this, tr("Base colour (shown in sRGB, stored linear)"));
+    if (!chosen.isValid()) return;  // cancelled
+    Rgb colour = glm::clamp(linearFromColor(chosen), Rgb(0.0f), Rgb(1.0f));
+    editMaterial([colour](Material& m) { m.layers.baseColor = colour; });
 }
 
 void MaterialPanel::chooseTint() {

@@ -22,7 +22,17 @@
 // blocked, so a refresh never writes back. Every edit is one undo step per interaction
 // (edit_sessions.h): a drag of the λ slider, or the steps made in one box while it has the focus.
 //
-// Object names for tests: nameEdit (the object's name), materialCombo, materialNameEdit,
+// A material is layered (layered.h; the default for new materials made here is the paper's single
+// lobe, as before) or single-lobe; "Kind" switches, and only that kind's editor is shown. The
+// layered editor speaks in artists' words: base colour, metallic, roughness (with λ and the Phong
+// exponent n beside it, all three editable and kept in step: roughnessToExponent), specular,
+// clear coat and coat roughness, each a slider and a box over [0, 1] (so no widget can produce an
+// out-of-range value), tooltips saying what each does.
+//
+// Object names for tests: nameEdit (the object's name), materialCombo, materialNameEdit, kindCombo,
+// baseColorButton, metallicSpin, roughnessSpin, roughnessLambdaSpin, roughnessExponentSpin,
+// specularSpin, coatSpin, coatRoughnessSpin, layeredIrradianceCheck (and each spin's slider:
+// metallicSlider, roughnessSlider, coatSlider),
 // usersLabel, makeUniqueButton, lambdaSlider, lambdaSpin, exponentSpin, modeCombo,
 // irradianceCheck, grazingCheck, tintButton, translateX/Y/Z, rotateX/Y/Z, scaleSpin, editor,
 // hintLabel.
@@ -74,6 +84,12 @@ private:
     void setLambda(double lambda, const QObject* from);
     void renameMaterial();
     void chooseTint();
+    void chooseBaseColor();
+    void buildLayeredEditor(QWidget* parent);
+    void connectLayeredEditor();
+    void refreshLayers(const Material& m);
+    // Sets one layer value (a roughness from λ or n too) as one undo step per interaction of `from`.
+    void editLayers(const std::function<void(Layers&)>& edit, const QObject* from);
 
     SceneDocument* document_;
     EditSessions* sessions_ = nullptr;
@@ -91,6 +107,21 @@ private:
     QCheckBox* irradiance_ = nullptr;
     QCheckBox* grazing_ = nullptr;
     QPushButton* tint_ = nullptr;
+    QComboBox* kind_ = nullptr;
+    QWidget* singleLobe_ = nullptr;
+    QWidget* layered_ = nullptr;
+    QPushButton* baseColor_ = nullptr;
+    QSlider* metallicSlider_ = nullptr;
+    QDoubleSpinBox* metallic_ = nullptr;
+    QSlider* roughnessSlider_ = nullptr;
+    QDoubleSpinBox* roughness_ = nullptr;
+    QDoubleSpinBox* roughnessLambda_ = nullptr;
+    QDoubleSpinBox* roughnessExponent_ = nullptr;
+    QDoubleSpinBox* specular_ = nullptr;
+    QSlider* coatSlider_ = nullptr;
+    QDoubleSpinBox* coat_ = nullptr;
+    QDoubleSpinBox* coatRoughness_ = nullptr;
+    QCheckBox* layeredIrradiance_ = nullptr;
     QDoubleSpinBox* translation_[3] = {};
     QDoubleSpinBox* rotation_[3] = {};
     QDoubleSpinBox* scale_ = nullptr;
