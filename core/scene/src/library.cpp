@@ -177,4 +177,38 @@ std::vector<std::string> thumbnailFileNames(const MaterialLibrary& library) {
     return names;
 }
 
+MaterialLibrary starterLibrary() {
+    MaterialLibrary library;
+    auto layered = [&](const char* name, Rgb base, float metallic, float roughness, float coat = 0.0f,
+                       float coatRoughness = 0.05f, float specular = 0.04f) {
+        Material m;
+        m.layered = true;
+        m.layers = {base, metallic, roughness, specular, coat, coatRoughness};
+        library.entries.push_back({name, m});
+    };
+    // Metals: the base colour is F0 (linear sRGB of measured reflectance, as glTF's samples use).
+    layered("Chrome", Rgb(0.550f, 0.556f, 0.554f), 1.0f, 0.05f);
+    layered("Gold", Rgb(1.000f, 0.766f, 0.336f), 1.0f, 0.25f);
+    layered("Copper", Rgb(0.955f, 0.638f, 0.538f), 1.0f, 0.3f);
+    layered("Brushed aluminium", Rgb(0.913f, 0.922f, 0.924f), 1.0f, 0.45f);
+    // Dielectrics: a coloured matte base under a colourless reflection of F0 0.04 (rubber 0.03).
+    layered("Red plastic", Rgb(0.60f, 0.04f, 0.03f), 0.0f, 0.25f);
+    layered("White satin plastic", Rgb(0.80f, 0.80f, 0.78f), 0.0f, 0.45f);
+    layered("Black rubber", Rgb(0.03f, 0.03f, 0.03f), 0.0f, 0.75f, 0.0f, 0.05f, 0.03f);
+    layered("Clay", Rgb(0.45f, 0.28f, 0.20f), 0.0f, 0.9f);
+    layered("Satin fabric", Rgb(0.50f, 0.10f, 0.30f), 0.0f, 0.6f);
+    // Coated: a clear varnish over the base.
+    layered("Glazed ceramic", Rgb(0.85f, 0.84f, 0.80f), 0.0f, 0.4f, 1.0f, 0.03f);
+    layered("Blue car paint", Rgb(0.05f, 0.10f, 0.45f), 0.4f, 0.45f, 1.0f, 0.03f);
+    layered("Varnished wood", Rgb(0.30f, 0.15f, 0.06f), 0.0f, 0.6f, 0.8f, 0.08f);
+    // The paper's single lobes (Figure 1): a mirror and its diffuse (the normal at λ 7).
+    Material mirror;
+    library.entries.push_back({"Mirror (single lobe)", mirror});
+    Material diffuse;
+    diffuse.lambda = 7.0f;
+    diffuse.mode = LookupMode::Normal;
+    library.entries.push_back({"Diffuse (single lobe)", diffuse});
+    return library;
+}
+
 }  // namespace mipgloss

@@ -143,3 +143,24 @@ TEST(ThumbnailFileNames, SuffixKeepsTheLengthLimit) {
 
 }  // namespace
 }  // namespace mipgloss
+
+// The starter library a new user gets: a dozen layered materials artists make and the paper's two,
+// every one valid, under unique valid names, dielectrics with a colourless F0 and metals with none
+// of a matte base.
+TEST(StarterLibrary, HoldsADozenValidLayeredMaterialsArtistsMake) {
+    const mipgloss::MaterialLibrary library = mipgloss::starterLibrary();
+    int layeredCount = 0;
+    std::set<std::string> names;
+    for (const mipgloss::LibraryMaterial& entry : library.entries) {
+        EXPECT_TRUE(mipgloss::materialNameProblem(entry.name).empty()) << entry.name;
+        EXPECT_TRUE(names.insert(entry.name).second) << entry.name << " twice";
+        EXPECT_TRUE(mipgloss::isValidMaterial(entry.material)) << entry.name;
+        if (entry.material.layered) ++layeredCount;
+    }
+    EXPECT_GE(layeredCount, 12);
+    for (const char* wanted : {"Chrome", "Gold", "Copper", "Red plastic", "Black rubber", "Clay", "Glazed ceramic",
+                               "Blue car paint", "Satin fabric"})
+        EXPECT_TRUE(library.contains(wanted)) << wanted;
+    EXPECT_EQ(library.find("Gold")->material.layers.metallic, 1.0f);
+    EXPECT_GT(library.find("Blue car paint")->material.layers.coat, 0.0f);
+}

@@ -231,6 +231,28 @@ TEST(LibraryDocument, EveryEditIsOnDiskAtOnce) {
     EXPECT_EQ(again.library(), doc.library());
 }
 
+// A new user's library (no file yet) opens as the starter materials, in memory; the first edit
+// writes them with it. A file that exists, even empty, is the user's and is never replaced.
+TEST(LibraryDocument, AMissingFileStartsFromTheStarterLibraryWrittenByTheFirstEdit) {
+    test::TempDir dir;
+    const fs::path file = dir / "library.json";
+    QUndoStack stack;
+    LibraryDocument doc(&stack);
+    ASSERT_TRUE(doc.open(file, starterLibrary()));
+    EXPECT_EQ(doc.library(), starterLibrary());
+    EXPECT_FALSE(fs::exists(file));
+    doc.add(entry("Mine", 2.0f));
+    ASSERT_TRUE(fs::exists(file));
+    MaterialLibrary expected = starterLibrary();
+    expected.entries.push_back(entry("Mine", 2.0f));
+    EXPECT_EQ(loadLibrary(file), expected);
+
+    const fs::path empty = dir / "empty.json";
+    saveLibrary(MaterialLibrary{}, empty);
+    ASSERT_TRUE(doc.open(empty, starterLibrary()));
+    EXPECT_EQ(doc.count(), 0) << "the user's own empty library stays empty";
+}
+
 TEST(LibraryDocument, AnUnreadableFileIsRefusedAndItsBytesNeverChange) {
     test::TempDir dir;
     const fs::path file = dir / "library.json";

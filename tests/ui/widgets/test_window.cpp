@@ -5,6 +5,7 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/library_dock.h"
+#include "mipgloss/ui/thumbnail_cache.h"
 #include "mipgloss/ui/library_document.h"
 #include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/main_window.h"
@@ -535,6 +536,8 @@ namespace {
 TEST(MainWindow, IdleDrawsNothingAndIrradianceComesOnlyWhenAsked) {
     auto w = openWindow();
     ASSERT_TRUE(settledFrame(*w));
+    // The library's thumbnails (the starter materials) are drawn in the background too.
+    ASSERT_TRUE(waitUntil([&] { return !w->libraryDock()->thumbnails()->busy(); }, kEnvironmentTimeoutMs));
     const quint64 framesBefore = w->viewport()->counters().frames;
     QTest::qWait(1500);  // events processed, nothing changed
     EXPECT_EQ(w->viewport()->counters().frames, framesBefore) << "frames drawn while idle";

@@ -149,7 +149,7 @@ private:
 LibraryDocument::LibraryDocument(QUndoStack* undoStack, QObject* parent)
     : QObject(parent), undoStack_(undoStack ? undoStack : new QUndoStack(this)) {}
 
-bool LibraryDocument::open(const std::filesystem::path& file) {
+bool LibraryDocument::open(const std::filesystem::path& file, const MaterialLibrary& whenMissing) {
     emit aboutToReset();
     ++generation_;
     library_ = {};
@@ -158,6 +158,7 @@ bool LibraryDocument::open(const std::filesystem::path& file) {
     lastError_.clear();
     std::error_code ec;
     const bool missing = !std::filesystem::exists(file, ec) && !ec;
+    if (missing) library_ = whenMissing;
     if (!missing) {
         try {
             library_ = loadLibrary(file);

@@ -269,7 +269,8 @@ void MainWindow::createDocks() {
     addDockWidget(Qt::RightDockWidgetArea, libraryDock_);
     tabifyDockWidget(materialDock, libraryDock_);
     materialDock->raise();
-    if (!library_->open(defaultLibraryPath()))
+    // A new user (no library file yet) starts with the starter materials.
+    if (!library_->open(defaultLibraryPath(), starterLibrary()))
         showMessage(tr("Your material library could not be read, so it is left as it is: %1")
                         .arg(library_->lastError()),
                     true);

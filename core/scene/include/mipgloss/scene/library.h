@@ -44,6 +44,12 @@ struct MaterialLibrary {
 // COM1..., also before a dot: "con.x") get a '_' after them, empty becomes "material", at most 100
 // bytes.
 std::string fileSafeName(std::string_view name);
+
+// The materials a new user's library starts with (mipgloss-gui on first start, when the user has no
+// library file yet): a dozen layered materials people make, from chrome, gold and copper to
+// plastic, rubber, clay, ceramic, car paint, satin and varnished wood, with measured-looking values
+// (linear base colours; metals' from their F0), and the paper's own mirror and diffuse.
+MaterialLibrary starterLibrary();
 // fileSafeName for every entry, made unique case-insensitively ("a", "A" -> "a", "A-2") so no two
 // entries share a file, in the library's order.
 std::vector<std::string> thumbnailFileNames(const MaterialLibrary& library);

@@ -48,11 +48,12 @@ public:
 
     // Until open() or saveAs(), the library lives in memory only (nothing is written anywhere).
 
-    // Reads `file` (defaultLibraryPath() for the user's own). Missing: an empty library, attached.
+    // Reads `file` (defaultLibraryPath() for the user's own). Missing: `whenMissing` (the window
+    // passes starterLibrary()), attached, in memory until the first edit writes the file.
     // Unreadable: false, lastError() says why, the library is empty and the document detached.
     // Not an edit: the undo stack keeps its commands, and those of the library opened before
     // become no-ops (they drop out of the stack when reached).
-    bool open(const std::filesystem::path& file);
+    bool open(const std::filesystem::path& file, const MaterialLibrary& whenMissing = {});
 
     // Edits (undoable, written at once). Rows out of range and refused names change nothing.
     // add: appends `entry` under entry.name made unique (MaterialLibrary::uniqueName); the new
