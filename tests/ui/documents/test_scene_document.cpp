@@ -183,6 +183,38 @@ TEST(SceneDocument, InvalidLambdaIsRefused) {
     EXPECT_EQ(doc.materialOf(doc.addObject(extra, absurd)).lambda, 8.0f);
 }
 
+// Layer values out of [0, 1] or NaN are refused like a bad λ: the last good layers stay, nothing is
+// emitted; a scene arriving whole has them brought into range (NaN: the default's).
+TEST(SceneDocument, InvalidLayersAreRefusedAndTheLastGoodOnesKept) {
+    SceneDocument doc;
+    doc.resetScene(threeSpheres());
+    Material m;
+    m.layered = true;
+    m.layers.metallic = 1.0f;
+    doc.setMaterial(0, m);
+    ASSERT_TRUE(doc.materialOf(0).layered);
+    QSignalSpy material(&doc, &SceneDocument::materialChanged);
+    for (auto bad : {+[](Layers& l) { l.metallic = std::numeric_limits<float>::quiet_NaN(); },
+                     +[](Layers& l) { l.roughness = 1.5f; }, +[](Layers& l) { l.coat = -0.5f; },
+                     +[](Layers& l) { l.baseColor.b = 3.0f; }}) {
+        Material b = m;
+        bad(b.layers);
+        doc.setMaterial(0, b);
+        EXPECT_EQ(doc.materialOf(0).layers, m.layers);
+    }
+    EXPECT_EQ(material.count(), 0);
+
+    Scene scene = threeSpheres();
+    Material& arriving = scene.materialOf(scene.objects[1]);
+    arriving.layered = true;
+    arriving.layers.roughness = 4.0f;
+    arriving.layers.coat = std::numeric_limits<float>::quiet_NaN();
+    doc.resetScene(scene);
+    EXPECT_EQ(doc.materialOf(1).layers.roughness, 1.0f);
+    EXPECT_EQ(doc.materialOf(1).layers.coat, Layers{}.coat);
+    EXPECT_TRUE(isValidMaterial(doc.materialOf(1)));
+}
+
 TEST(SceneDocument, MaterialIsSanitised) {
     SceneDocument doc;
     doc.resetScene(threeSpheres());

@@ -31,9 +31,23 @@ Material sanitized(Material m) {
     return m;
 }
 
+// Layer values arriving without a previous value: each into [0, 1], NaN the default's.
+Layers admittedLayers(Layers l) {
+    const Layers defaults;
+    auto unit = [](float v, float fallback) { return std::isnan(v) ? fallback : std::clamp(v, 0.0f, 1.0f); };
+    for (int c = 0; c < 3; ++c) l.baseColor[c] = unit(l.baseColor[c], defaults.baseColor[c]);
+    l.metallic = unit(l.metallic, defaults.metallic);
+    l.roughness = unit(l.roughness, defaults.roughness);
+    l.specular = unit(l.specular, defaults.specular);
+    l.coat = unit(l.coat, defaults.coat);
+    l.coatRoughness = unit(l.coatRoughness, defaults.coatRoughness);
+    return l;
+}
+
 Material admitted(Material m) {
     m = sanitized(m);
     m.lambda = admittedLambda(m.lambda);
+    m.layers = admittedLayers(m.layers);
     return m;
 }
 
@@ -99,6 +113,7 @@ void SceneDocument::setMaterial(int index, const Material& material, MergeKey me
     const Material& current = named->material;
     Material m = sanitized(material);
     if (!validLambda(m.lambda)) m.lambda = current.lambda;  // refused: the last good λ stays
+    if (!isValidLayers(m.layers)) m.layers = current.layers;  // so do the last good layers
     if (current == m) return;
     undoStack_->push(new SetMaterialCommand(this, named->id, current, m, merge));
 }
