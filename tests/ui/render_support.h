@@ -6,6 +6,7 @@
 #include "mipgloss/scene/camera.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/offscreen.h"
 
@@ -119,5 +120,27 @@ inline float footprintLod(const glm::vec3& d, const glm::vec3& dx, const glm::ve
     return std::log2(std::max(rho, 1e-30f));
 }
 
+
+// A picture as `mipgloss render` draws it, settled (every lobe in use from its own cube, made first),
+// and its AOV, from a fixed orbit (yaw 30°, pitch 20°) framing the scene.
+struct SettledRender {
+    std::vector<glm::vec4> hdr;
+    ui::AovImage aov;
+};
+
+inline SettledRender renderSettled(ui::OffscreenRenderer& renderer, const Scene& scene,
+                                   const std::shared_ptr<const PreparedEnvironment>& env, int size) {
+    renderer.setLobes(makeLobeCubes(*env, scene));
+    OrbitCamera camera;
+    camera.yawDegrees = 30.0f;
+    camera.pitchDegrees = 20.0f;
+    camera.frame(sceneBounds(scene), 1.0f);
+    SettledRender out;
+    renderer.render(scene, camera, env, size, size);
+    int w = 0, h = 0;
+    out.hdr = renderer.lastHdr(w, h);
+    out.aov = renderer.renderAov(scene, camera, env, size, size);
+    return out;
+}
 
 }  // namespace mipgloss::test

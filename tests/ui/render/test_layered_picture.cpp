@@ -39,27 +39,14 @@ std::shared_ptr<const PreparedEnvironment> prepared(const std::filesystem::path&
     return env;
 }
 
-struct Settled {
-    std::vector<glm::vec4> hdr;
-    ui::AovImage aov;
-};
+using Settled = test::SettledRender;
 
+// test::renderSettled with the binary's one renderer.
 Settled renderSettled(const Scene& scene, const std::shared_ptr<const PreparedEnvironment>& env, int size) {
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     EXPECT_NE(renderer, nullptr) << error;
-    Settled out;
-    if (!renderer) return out;
-    renderer->setLobes(makeLobeCubes(*env, scene));
-    OrbitCamera camera;
-    camera.yawDegrees = 30.0f;
-    camera.pitchDegrees = 20.0f;
-    camera.frame(sceneBounds(scene), 1.0f);
-    renderer->render(scene, camera, env, size, size);
-    int w = 0, h = 0;
-    out.hdr = renderer->lastHdr(w, h);
-    out.aov = renderer->renderAov(scene, camera, env, size, size);
-    return out;
+    return renderer ? test::renderSettled(*renderer, scene, env, size) : Settled{};
 }
 
 Material layered(const Layers& layers) {

@@ -43,26 +43,8 @@ std::shared_ptr<const PreparedEnvironment> sunrise(int faceSize) {
     return env;
 }
 
-struct SettledRender {
-    std::vector<glm::vec4> hdr;
-    ui::AovImage aov;
-};
-
-// Renders the scene settled: its lobe cubes made first, as `mipgloss render` does.
-SettledRender renderSettled(ui::OffscreenRenderer& renderer, const Scene& scene,
-                            const std::shared_ptr<const PreparedEnvironment>& env, int size) {
-    renderer.setLobes(makeLobeCubes(*env, scene));
-    OrbitCamera camera;
-    camera.yawDegrees = 30.0f;
-    camera.pitchDegrees = 20.0f;
-    camera.frame(sceneBounds(scene), 1.0f);
-    SettledRender out;
-    renderer.render(scene, camera, env, size, size);
-    int w = 0, h = 0;
-    out.hdr = renderer.lastHdr(w, h);
-    out.aov = renderer.renderAov(scene, camera, env, size, size);
-    return out;
-}
+using test::renderSettled;
+using test::SettledRender;
 
 class SettledPicture : public ::testing::TestWithParam<PictureCase> {};
 

@@ -94,6 +94,16 @@ QDoubleSpinBox* makeSpin(QWidget* parent, const QString& name, double lo, double
     return spin;
 }
 
+// "Linear RGB r, g, b (sRGB #rrggbb)", after `lead` when there is one: a colour button's tooltip.
+QString colourTip(const QString& lead, const Rgb& linear) {
+    const QString values = MaterialPanel::tr("Linear RGB %1, %2, %3 (sRGB %4)")
+                               .arg(linear.r, 0, 'f', 3)
+                               .arg(linear.g, 0, 'f', 3)
+                               .arg(linear.b, 0, 'f', 3)
+                               .arg(colorFromLinear(linear).name());
+    return lead.isEmpty() ? values : lead + QStringLiteral(" ") + values;
+}
+
 QIcon swatch(const QColor& color) {
     QPixmap pixmap(32, 16);
     pixmap.fill(color);
@@ -384,11 +394,7 @@ void MaterialPanel::refreshMaterial() {
     refreshLayers(m);
     const QColor color = colorFromLinear(m.tint);
     tint_->setIcon(swatch(color));
-    tint_->setToolTip(tr("Linear RGB %1, %2, %3 (sRGB %4)")
-                          .arg(m.tint.r, 0, 'f', 3)
-                          .arg(m.tint.g, 0, 'f', 3)
-                          .arg(m.tint.b, 0, 'f', 3)
-                          .arg(color.name()));
+    tint_->setToolTip(colourTip(QString(), m.tint));
 }
 
 void MaterialPanel::refreshUsers() {
@@ -602,12 +608,9 @@ void MaterialPanel::refreshLayers(const Material& m) {
     layeredIrradiance_->setChecked(m.useIrradiance);
     const QColor color = colorFromLinear(l.baseColor);
     baseColor_->setIcon(swatch(color));
-    baseColor_->setToolTip(tr("The surface's own colour: the matte layer of plastic, paint or wood, the "
-                              "reflection of a metal. Linear RGB %1, %2, %3 (sRGB %4)")
-                               .arg(l.baseColor.r, 0, 'f', 3)
-                               .arg(l.baseColor.g, 0, 'f', 3)
-                               .arg(l.baseColor.b, 0, 'f', 3)
-                               .arg(color.name()));
+    baseColor_->setToolTip(colourTip(
+        tr("The surface's own colour: the matte layer of plastic, paint or wood, the reflection of a metal."),
+        l.baseColor));
 }
 
 void MaterialPanel::chooseBaseColor() {
