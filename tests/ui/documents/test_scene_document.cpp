@@ -394,6 +394,16 @@ TEST(SceneListModel, TooltipNamesLambdaModeAndTriangles) {
     EXPECT_TRUE(tip.contains(QStringLiteral("normal"))) << tip.toStdString();
     const QString triangles = QLocale().toString(static_cast<qlonglong>(sphereMesh()->triangleCount()));
     EXPECT_TRUE(tip.contains(triangles)) << tip.toStdString();
+    // A layered material is named by its layers, not by the single lobe's λ it does not use.
+    Material paint;
+    paint.layered = true;
+    paint.layers = {Rgb(0.6f, 0.04f, 0.03f), 0.0f, 0.25f, 0.04f, 1.0f, 0.03f};
+    doc.setMaterial(2, paint);
+    const QString layered = model.data(model.index(2), Qt::ToolTipRole).toString();
+    EXPECT_TRUE(layered.contains(QStringLiteral("base 0.60, 0.04, 0.03"))) << layered.toStdString();
+    EXPECT_TRUE(layered.contains(QStringLiteral("roughness 0.25"))) << layered.toStdString();
+    EXPECT_TRUE(layered.contains(QStringLiteral("coat 1.00"))) << layered.toStdString();
+    EXPECT_FALSE(layered.contains(QStringLiteral("λ"))) << layered.toStdString();
 }
 
 // Adds, duplicates, removes and their undo and redo move single rows: the model never resets

@@ -41,8 +41,12 @@ QVariant SceneListModel::data(const QModelIndex& index, int role) const {
             const qlonglong triangles =
                 object.mesh ? static_cast<qlonglong>(object.mesh->triangleCount()) : 0;
             QString text = named ? QString::fromStdString(named->name) + QStringLiteral(" · ") : QString();
-            text += tr("λ %1 · %2").arg(m.lambda, 0, 'f', 2).arg(lookupModeName(m.mode));
-            if (m.mode == LookupMode::Normal && m.useIrradiance) text += tr(" (irradiance)");
+            if (m.layered) {
+                text += layersSummary(m.layers);
+            } else {
+                text += tr("λ %1 · %2").arg(m.lambda, 0, 'f', 2).arg(lookupModeName(m.mode));
+                if (m.mode == LookupMode::Normal && m.useIrradiance) text += tr(" (irradiance)");
+            }
             text += tr(" · %1 triangles").arg(QLocale().toString(triangles));
             return text;
         }
@@ -98,6 +102,17 @@ void SceneListModel::rowChanged(int row) {
     if (row < 0 || row >= rowCount()) return;
     const QModelIndex i = index(row);
     emit dataChanged(i, i);
+}
+
+QString layersSummary(const Layers& l) {
+    QString text = l.metallic >= 1.0f ? SceneListModel::tr("metal %1, %2, %3")
+                                      : SceneListModel::tr("base %1, %2, %3");
+    text = text.arg(l.baseColor.r, 0, 'f', 2).arg(l.baseColor.g, 0, 'f', 2).arg(l.baseColor.b, 0, 'f', 2);
+    if (l.metallic > 0.0f && l.metallic < 1.0f) text += SceneListModel::tr(" · metallic %1").arg(l.metallic, 0, 'f', 2);
+    text += SceneListModel::tr(" · roughness %1").arg(l.roughness, 0, 'f', 2);
+    if (l.coat > 0.0f)
+        text += SceneListModel::tr(" · coat %1 (roughness %2)").arg(l.coat, 0, 'f', 2).arg(l.coatRoughness, 0, 'f', 2);
+    return text;
 }
 
 }  // namespace mipgloss::ui

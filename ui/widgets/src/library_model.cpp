@@ -1,4 +1,5 @@
 #include "mipgloss/ui/library_model.h"
+#include "mipgloss/ui/scene_list_model.h"
 
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/library.h"
@@ -69,6 +70,7 @@ QVariant LibraryModel::data(const QModelIndex& index, int role) const {
             return picture.isNull() ? placeholder_ : picture;
         }
         case Qt::ToolTipRole: {
+            if (m.layered) return layersSummary(m.layers);
             QString text = tr("λ %1 · n %2 · %3")
                                .arg(m.lambda, 0, 'f', 2)
                                .arg(exponentText(lambdaToExponent(m.lambda)))

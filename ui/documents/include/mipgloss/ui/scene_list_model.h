@@ -12,7 +12,10 @@
 // (SceneDocument::applyLibraryMaterial, one undo step).
 #pragma once
 
+#include "mipgloss/scene/scene.h"
+
 #include <QAbstractListModel>
+#include <QString>
 
 namespace mipgloss::ui {
 
@@ -44,5 +47,9 @@ private:
 
     SceneDocument* document_;
 };
+
+// A layered material in a tooltip's words: "metal" or "base r, g, b", roughness, and the coat when
+// it has one (the scene list's and the library's tooltips).
+QString layersSummary(const Layers& layers);
 
 }  // namespace mipgloss::ui
