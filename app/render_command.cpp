@@ -256,7 +256,9 @@ int runRender(Args args, const char* argv0) {
         camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
     }
     // The settled picture: each lobe in use from its own cube.
+    const auto lobesStart = std::chrono::steady_clock::now();
     const std::vector<std::shared_ptr<const LobeCube>> lobes = makeLobeCubes(*environment, scene);
+    const double lobeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - lobesStart).count();
     renderer.setLobes(lobes);
     const QImage image = renderer.render(scene, camera, environment, width, height);
     if (image.isNull()) throw std::runtime_error(outPath->string() + ": the render failed");
@@ -315,8 +317,8 @@ int runRender(Args args, const char* argv0) {
                   << "² " << builderName(environment->settings.builder) << " filtered through level "
                   << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
                   << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
-                  << " lobe cube(s) (" << c.objectsSettled << " objects settled), prepared in "
-                  << prepareSeconds << " s; " << renderer.glDescription() << '\n';
+                  << " lobe cube(s) made in " << lobeSeconds << " s (" << c.objectsSettled
+                  << " objects settled), environment prepared in " << prepareSeconds << " s; " << renderer.glDescription() << '\n';
     }
     return 0;
 }
