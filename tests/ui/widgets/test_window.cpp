@@ -683,3 +683,19 @@ TEST(MainWindow, LibraryDockAppliesEntriesAndItsEditsNeverMarkTheScene) {
     EXPECT_EQ(loadLibrary(file).entries.size(), 0u) << "the undo is on disk too";
     EXPECT_FALSE(w->isWindowModified());
 }
+
+// A laptop screen (1280×800 less a panel and the title bar) holds the whole window: the docks
+// scroll rather than push the window taller than the screen, whatever the material panel shows
+// (a layered material's editor is the tallest).
+TEST(MainWindow, FitsALaptopScreenWithALayeredMaterialSelected) {
+    auto w = openWindow();
+    Material paint;
+    paint.layered = true;
+    w->document()->setMaterial(0, paint);
+    w->document()->setSelected(0);
+    QCoreApplication::processEvents();
+    const QSize least = w->minimumSizeHint().expandedTo(w->minimumSize());
+    std::printf("[ MainWindow ] minimum size %dx%d\n", least.width(), least.height());
+    EXPECT_LE(least.height(), 720);
+    EXPECT_LE(least.width(), 1280);
+}

@@ -34,6 +34,8 @@
 #include <QMimeData>
 #include <QOpenGLContext>
 #include <QProgressBar>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QPushButton>
 #include <QStatusBar>
 #include <QTimer>
@@ -241,6 +243,22 @@ void MainWindow::createActions() {
     connect(showCountersAction_, &QAction::toggled, viewport_, &Viewport::setShowCounters);
 }
 
+namespace {
+// A panel in a vertical scroll area, so a tall panel (a layered material's editor) scrolls inside its
+// dock instead of making the window taller than a laptop's screen.
+QScrollArea* scrollable(QWidget* panel, QWidget* parent) {
+    auto* area = new QScrollArea(parent);
+    area->setObjectName(panel->objectName() + QStringLiteral("Scroll"));
+    area->setWidget(panel);
+    area->setWidgetResizable(true);
+    area->setFrameShape(QFrame::NoFrame);
+    area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    // As wide as the panel wants, so nothing is cut off sideways.
+    area->setMinimumWidth(panel->minimumSizeHint().width() + area->verticalScrollBar()->sizeHint().width());
+    return area;
+}
+}  // namespace
+
 void MainWindow::createDocks() {
     auto* sceneDock = new QDockWidget(tr("Scene"), this);
     sceneDock->setObjectName(QStringLiteral("sceneDock"));
@@ -250,14 +268,14 @@ void MainWindow::createDocks() {
     auto* materialDock = new QDockWidget(tr("Material"), this);
     materialDock->setObjectName(QStringLiteral("materialDock"));
     materialPanel_ = new MaterialPanel(document_, materialDock);
-    materialDock->setWidget(materialPanel_);
+    materialDock->setWidget(scrollable(materialPanel_, materialDock));
     addDockWidget(Qt::RightDockWidgetArea, materialDock);
 
     auto* environmentDock = new QDockWidget(tr("Environment"), this);
     environmentDock->setObjectName(QStringLiteral("environmentDock"));
     environmentPanel_ = new EnvironmentPanel(document_, environments_, environmentDock);
     connect(environmentPanel_, &EnvironmentPanel::openRequested, this, &MainWindow::openEnvironmentDialog);
-    environmentDock->setWidget(environmentPanel_);
+    environmentDock->setWidget(scrollable(environmentPanel_, environmentDock));
     addDockWidget(Qt::RightDockWidgetArea, environmentDock);
 
     // The library: beside the material panel, tabbed, so a material and its library are one click
