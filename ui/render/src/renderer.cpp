@@ -148,38 +148,62 @@ struct Renderer::Impl {
         gl->glActiveTexture(GL_TEXTURE0);
     }
 
-    // Sets a layered material's uniforms and binds its three lookups; true when every lookup it
-    // makes reads its own lobe cube (or the irradiance map): the settled picture.
-    bool bindLayered(QOpenGLShaderProgram& program, const Material& m, bool irradianceReady) {
+    // Where a program takes a layered material's values, resolved once per drawObjects call (a
+    // name lookup per uniform per object would sit in the draw loop).
+    struct LayeredUniforms {
+        explicit LayeredUniforms(QOpenGLShaderProgram& p)
+            : f0(p.uniformLocation("uF0")),
+              diffuseColour(p.uniformLocation("uDiffuseColour")),
+              specularLambda(p.uniformLocation("uSpecularLambda")),
+              coat(p.uniformLocation("uCoat")),
+              coatLambda(p.uniformLocation("uCoatLambda")),
+              coatExponent(p.uniformLocation("uCoatExponent")),
+              useCoatLobe(p.uniformLocation("uUseCoatLobe")),
+              coatLobeExact(p.uniformLocation("uCoatLobeExact")),
+              useDiffuseLobe(p.uniformLocation("uUseDiffuseLobe")),
+              diffuseLobeExact(p.uniformLocation("uDiffuseLobeExact")),
+              diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")) {}
+        int f0, diffuseColour, specularLambda, coat, coatLambda, coatExponent, useCoatLobe, coatLobeExact,
+            useDiffuseLobe, diffuseLobeExact, diffuseIrradiance;
+    };
+
+    // The uniforms a single-lobe material shares with a layered one's specular layer.
+    struct LobeUniforms {
+        int useLobe, lobeExact, exponent;
+    };
+
+    // What drawing one object read: its own lobe cube(s) (the settled picture), or the chain
+    // standing in for a lobe while it is made.
+    struct ObjectRead {
+        bool settled = false;
+        bool fromChain = false;
+    };
+
+    // Sets a layered material's uniforms and binds its three lookups.
+    ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const Material& m,
+                           bool irradianceReady) {
         bindSplitSum();
         const LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
         const GpuLobe* specular = plan.specular.wantsLobeCube ? lobeFor(plan.specular.lambda) : nullptr;
         const GpuLobe* coat = plan.hasCoat && plan.coat.wantsLobeCube ? lobeFor(plan.coat.lambda) : nullptr;
         const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
         const GpuLobe* diffuse = !diffuseIrradiance && plan.diffuse.wantsLobeCube ? lobeFor(plan.diffuse.lambda) : nullptr;
-        auto set1i = [&](const char* name, bool v) { gl->glUniform1i(program.uniformLocation(name), v ? 1 : 0); };
-        auto set1f = [&](const char* name, double v) {
-            gl->glUniform1f(program.uniformLocation(name), static_cast<float>(v));
-        };
-        auto set3f = [&](const char* name, const Rgb& v) {
-            gl->glUniform3fv(program.uniformLocation(name), 1, glm::value_ptr(v));
-        };
-        set1i("uLayered", true);
-        set3f("uF0", specularF0(m.layers));
-        set3f("uDiffuseColour", diffuseColour(m.layers));
-        set1f("uSpecularLambda", plan.specular.lambda);
-        set1f("uCoat", plan.hasCoat ? m.layers.coat : 0.0f);
-        set1f("uCoatLambda", plan.coat.lambda);
-        set1i("uUseLobe", specular);
-        set1i("uLobeExact", specular && specular->source->holdsLobe);
-        set1f("uExponent", plan.specular.exponent);
-        set1i("uUseCoatLobe", coat);
-        set1i("uCoatLobeExact", coat && coat->source->holdsLobe);
-        set1f("uCoatExponent", plan.coat.exponent);
-        set1i("uUseDiffuseLobe", diffuse);
-        set1i("uDiffuseLobeExact", diffuse && diffuse->source->holdsLobe);
-        set1i("uDiffuseIrradiance", diffuseIrradiance);
-        set1i("uSharperAtGrazing", false);
+        auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
+        auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
+        gl->glUniform3fv(u.f0, 1, glm::value_ptr(specularF0(m.layers)));
+        gl->glUniform3fv(u.diffuseColour, 1, glm::value_ptr(diffuseColour(m.layers)));
+        set1f(u.specularLambda, plan.specular.lambda);
+        set1f(u.coat, plan.hasCoat ? m.layers.coat : 0.0f);
+        set1f(u.coatLambda, plan.coat.lambda);
+        set1i(lobeUniforms.useLobe, specular);
+        set1i(lobeUniforms.lobeExact, specular && specular->source->holdsLobe);
+        set1f(lobeUniforms.exponent, plan.specular.exponent);
+        set1i(u.useCoatLobe, coat);
+        set1i(u.coatLobeExact, coat && coat->source->holdsLobe);
+        set1f(u.coatExponent, plan.coat.exponent);
+        set1i(u.useDiffuseLobe, diffuse);
+        set1i(u.diffuseLobeExact, diffuse && diffuse->source->holdsLobe);
+        set1i(u.diffuseIrradiance, diffuseIrradiance);
         bindChain(plan.specular, 0);
         if (specular) bindLobe(*specular);
         if (plan.hasCoat) {
@@ -190,8 +214,11 @@ struct Renderer::Impl {
             bindChain(plan.diffuse, kDiffuseChainUnit);
             if (diffuse) bindLobe(*diffuse, kDiffuseLobeUnit);
         }
-        return (specular || plan.specular.mirror) && (!plan.hasCoat || coat || plan.coat.mirror) &&
-               (diffuseIrradiance || diffuse);
+        ObjectRead read;
+        read.settled = (specular || plan.specular.mirror) && (!plan.hasCoat || coat || plan.coat.mirror) &&
+                       (diffuseIrradiance || diffuse);
+        read.fromChain = !read.settled;
+        return read;
     }
 
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
@@ -211,10 +238,10 @@ struct Renderer::Impl {
         const int locLookup = program.uniformLocation("uLookup");
         const int locGrazing = program.uniformLocation("uSharperAtGrazing");
         const int locLambda = program.uniformLocation("uLambda");
-        const int locUseLobe = program.uniformLocation("uUseLobe");
-        const int locLobeExact = program.uniformLocation("uLobeExact");
-        const int locExponent = program.uniformLocation("uExponent");
+        const LobeUniforms lobeUniforms{program.uniformLocation("uUseLobe"), program.uniformLocation("uLobeExact"),
+                                        program.uniformLocation("uExponent")};
         const int locLayered = program.uniformLocation("uLayered");
+        const LayeredUniforms layeredUniforms(program);
         // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
         // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
         gl->glUniform1f(program.uniformLocation("uLevelOffset"),
@@ -230,49 +257,39 @@ struct Renderer::Impl {
             }
             const GpuMesh& mesh = gpuMesh(object.mesh);
             const Material& m = scene.materialOf(object);
-            const glm::mat4 objectModel = object.transform.matrix();
-            if (m.layered) {
-                gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(objectModel));
-                gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE,
-                                       glm::value_ptr(glm::mat3(objectModel) /
-                                                      std::max(std::abs(object.transform.scale), 1e-30f)));
-                const bool settled = bindLayered(program, m, irradianceReady);
-                gl->glBindVertexArray(mesh.vao);
-                gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
-                if (aov) continue;
-                ++counters.objectsDrawn;
-                ++counters.drawCalls;
-                if (settled) ++counters.objectsSettled;
-                else ++counters.objectsFromChain;
-                continue;
-            }
-            gl->glUniform1i(locLayered, 0);
-            const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
-            const GpuLobe* lobe = plan.wantsLobeCube ? lobeFor(plan.lambda) : nullptr;
             const glm::mat4 model = object.transform.matrix();
             const glm::mat3 rotation =
                 glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
             gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
             gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
-            gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
-            gl->glUniform1i(locLookup, static_cast<int>(plan.lookup));
-            gl->glUniform1i(locGrazing, plan.sharperAtGrazing ? 1 : 0);
-            gl->glUniform1f(locLambda, plan.lambda);
-            gl->glUniform1i(locUseLobe, lobe ? 1 : 0);
-            gl->glUniform1i(locLobeExact, lobe && lobe->source->holdsLobe ? 1 : 0);
-            gl->glUniform1f(locExponent, static_cast<float>(plan.exponent));
-            if (lobe) bindLobe(*lobe);
-            // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
-            // level standing in for the material's lobe; a mirror reads the mirror texture.
-            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, plan.mirror ? mirrorTexture : environmentTexture);
-            gl->glBindSampler(0, sampler(plan.minLevel));
+            gl->glUniform1i(locLayered, m.layered ? 1 : 0);
+            ObjectRead read;
+            if (m.layered) {
+                read = bindLayered(layeredUniforms, lobeUniforms, m, irradianceReady);
+            } else {
+                const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
+                const GpuLobe* lobe = plan.wantsLobeCube ? lobeFor(plan.lambda) : nullptr;
+                gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
+                gl->glUniform1i(locLookup, static_cast<int>(plan.lookup));
+                gl->glUniform1i(locGrazing, plan.sharperAtGrazing ? 1 : 0);
+                gl->glUniform1f(locLambda, plan.lambda);
+                gl->glUniform1i(lobeUniforms.useLobe, lobe ? 1 : 0);
+                gl->glUniform1i(lobeUniforms.lobeExact, lobe && lobe->source->holdsLobe ? 1 : 0);
+                gl->glUniform1f(lobeUniforms.exponent, static_cast<float>(plan.exponent));
+                if (lobe) bindLobe(*lobe);
+                // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
+                // level standing in for the material's lobe; a mirror reads the mirror texture.
+                bindChain(plan, 0);
+                read.settled = lobe != nullptr;
+                read.fromChain = !lobe && plan.readsChainForLobe();
+            }
             gl->glBindVertexArray(mesh.vao);
             gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
             if (aov) continue;
             ++counters.objectsDrawn;
             ++counters.drawCalls;
-            if (lobe) ++counters.objectsSettled;
-            else if (plan.readsChainForLobe()) ++counters.objectsFromChain;
+            if (read.settled) ++counters.objectsSettled;
+            else if (read.fromChain) ++counters.objectsFromChain;
         }
     }
 
