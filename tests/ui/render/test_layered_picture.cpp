@@ -60,6 +60,8 @@ struct LayeredCase {
     const char* name;
     Layers layers;
     const char* map;
+    int faceSize;  // the environment's base
+    int size;      // image side: the sphere fills it, so 384 is large on screen and 96 small
 };
 
 class LayeredPicture : public ::testing::TestWithParam<LayeredCase> {};
@@ -68,9 +70,9 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
     const LayeredCase& param = GetParam();
     const auto file = test::asset(std::string("env/") + param.map + ".exr");
     MIPGLOSS_REQUIRE_ASSET(file);
-    const auto env = prepared(file, 128);
+    const auto env = prepared(file, param.faceSize);
     const Scene scene = test::sphereScene(layered(param.layers));
-    const int size = 384;
+    const int size = param.size;
     const Settled r = renderSettled(scene, env, size);
     ASSERT_TRUE(r.aov.layered);
     ASSERT_EQ(r.hdr.size(), r.aov.exact.size());
@@ -84,6 +86,7 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
         if (r.aov.exact[i] == 1.0f) marked.push_back(i);
     }
     ASSERT_GT(objectPixels, size * size / 8);
+    ASSERT_FALSE(marked.empty()) << param.name;
     const double markedFraction = static_cast<double>(marked.size()) / objectPixels;
     const std::size_t stride = std::max<std::size_t>(1, marked.size() / 1500);
     std::vector<std::size_t> sample;
@@ -103,10 +106,14 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
     }
     for (std::size_t i : sample) shown.push_back(Rgb(r.hdr[i]));
     const double error = relativeRms(shown, predicted);
-    std::printf("[ LayeredPicture ] %s on %s: %d object pixels, %.0f %% marked exact, Σ weight ⊙ lobe vs picture "
-                "relative RMS %.2f %%\n",
-                param.name, param.map, objectPixels, 100.0 * markedFraction, 100.0 * error);
-    EXPECT_GE(markedFraction, 0.5) << param.name;
+    std::printf("[ LayeredPicture ] %s on %s at %d², %d² image: %d object pixels, %.0f %% marked exact, "
+                "Σ weight ⊙ lobe vs picture relative RMS %.2f %%\n",
+                param.name, param.map, param.faceSize, size, objectPixels, 100.0 * markedFraction, 100.0 * error);
+    // Large on screen most pixels read their lobes at the cubes' base level; small, a footprint
+    // wider than a texel blurs more of them, which the AOV says (not exact) and this does not count.
+    if (size >= 384) {
+        EXPECT_GE(markedFraction, 0.5) << param.name;
+    }
     EXPECT_LE(error, 0.02) << param.name;
 
     // The AOV's weights are layered.h's at the pixel's N·v (the table read on the GPU).
@@ -122,9 +129,15 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
 // exact: a coat of roughness 0.25 (n = 94), not a car paint's near-mirror coat.
 INSTANTIATE_TEST_SUITE_P(
     Materials, LayeredPicture,
-    ::testing::Values(LayeredCase{"red_plastic", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "forest"},
-                      LayeredCase{"rough_gold", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f}, "sunrise"},
-                      LayeredCase{"coated_blue", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f}, "sunrise"}),
+    ::testing::Values(
+        LayeredCase{"red_plastic", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "forest", 128, 384},
+        LayeredCase{"rough_gold", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f}, "sunrise", 128, 384},
+        LayeredCase{"coated_blue", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f}, "sunrise", 128, 384},
+        // Other face sizes, and the sphere small on screen.
+        LayeredCase{"red_plastic_256", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "sunrise", 256, 384},
+        LayeredCase{"coated_blue_64", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f}, "forest", 64, 384},
+        LayeredCase{"rough_gold_small", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f}, "sunrise", 128, 96},
+        LayeredCase{"red_plastic_small", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "forest", 256, 96}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 // A dielectric's specular weight rises toward the silhouette; a metal's is coloured (its F0).
@@ -166,9 +179,12 @@ TEST(LayeredPicture, AWhiteDielectricInAWhiteFurnaceReturnsAtMostOne) {
     const auto file = dir / "white.exr";
     std::vector<float> white(64 * 32 * 3, 1.0f);
     writeFloatChannels(file, 64, 32, {"R", "G", "B"}, white);
-    const auto env = prepared(file, 32);
+    // Two face sizes, the sphere large (384²) and small (64²) on screen, with and without a coat.
+    for (const int faceSize : {32, 128})
+    for (const int size : {64, 384})
     for (const float coat : {0.0f, 1.0f}) {
-        const Settled r = renderSettled(test::sphereScene(layered({Rgb(1.0f), 0.0f, 0.5f, 0.04f, coat, 0.3f})), env, 128);
+        const auto env = prepared(file, faceSize);
+        const Settled r = renderSettled(test::sphereScene(layered({Rgb(1.0f), 0.0f, 0.5f, 0.04f, coat, 0.3f})), env, size);
         float most = 0.0f, least = 2.0f, centre = 0.0f, bestMu = 0.0f;
         for (std::size_t i = 0; i < r.hdr.size(); ++i) {
             if (r.aov.exponent[i] == 0.0f) continue;
@@ -178,10 +194,11 @@ TEST(LayeredPicture, AWhiteDielectricInAWhiteFurnaceReturnsAtMostOne) {
             }
             if (r.aov.cosView[i] > bestMu) bestMu = r.aov.cosView[i], centre = r.hdr[i].g;
         }
-        std::printf("[ LayeredPicture ] furnace, coat %.0f: pixels in [%.4f, %.4f], %.4f where N·v is %.3f\n", coat,
-                    least, most, centre, bestMu);
-        EXPECT_LE(most, 1.01f);
-        EXPECT_GE(centre, 0.9f);
+        std::printf("[ LayeredPicture ] furnace at %d², %d² image, coat %.0f: pixels in [%.4f, %.4f], %.4f where N·v "
+                    "is %.3f\n",
+                    faceSize, size, coat, least, most, centre, bestMu);
+        EXPECT_LE(most, 1.01f) << faceSize << " " << size << " " << coat;
+        EXPECT_GE(centre, 0.9f) << faceSize << " " << size << " " << coat;
     }
 }
 
