@@ -36,6 +36,8 @@ struct OrbitCamera {
     // Frame-all: aims at the bounds' centre and backs off until the box's corners fit both fields
     // of view with `margin` (> 1) to spare. Keeps yaw and pitch; scale-free (distance ∝ size).
     void frame(const Bounds& bounds, float aspect, float margin = 1.1f);
+
+    bool operator==(const OrbitCamera&) const = default;
 };
 
 // The six planes of a view-projection matrix (Gribb & Hartmann 2001), normalized, pointing in.

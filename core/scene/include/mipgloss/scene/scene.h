@@ -9,6 +9,7 @@
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/io/import.h"
+#include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/mesh.h"
 
 #include <glm/mat4x4.hpp>
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -151,6 +153,8 @@ struct Scene {
     std::vector<NamedMaterial> materials;  // in the order they were added; unused ones may stay
     EnvironmentSettings environment;
     DisplaySettings display;
+    // The view saved with the scene; none: frame the scene when it is opened.
+    std::optional<OrbitCamera> camera;
 
     const NamedMaterial* findMaterial(MaterialId id) const;
     NamedMaterial* findMaterial(MaterialId id);
