@@ -672,3 +672,106 @@ TEST(SceneFile, MaterialNamesMustResolveAndBeUnique) {
     EXPECT_EQ(bare.materialOf(bare.objects[0]), Material{});
     EXPECT_NE(bare.findMaterial(bare.objects[0].material), nullptr);
 }
+
+// Version 6: the camera round-trips exactly; a file without one (every older version too) has
+// none; each bad value is refused naming the file and the key; saving refuses what would not load.
+TEST(SceneFile, CameraRoundTripsAndBadValuesAreRefusedByKey) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    Scene scene = makeFigure1Scene();
+    OrbitCamera camera;
+    camera.target = {1.25f, -0.5f, 3.0f};
+    camera.distance = 7.75f;
+    camera.yawDegrees = -123.456f;
+    camera.pitchDegrees = 89.0f;  // the orbit camera's own limit loads again
+    camera.fovYDegrees = 42.5f;
+    scene.camera = camera;
+    const fs::path file = fs::path(dir.path().toStdString()) / "camera.mipgloss";
+    saveScene(scene, file);
+    const Scene back = loadScene(file);
+    ASSERT_TRUE(back.camera.has_value());
+    EXPECT_EQ(*back.camera, camera);
+
+    Scene noCamera = makeFigure1Scene();
+    const fs::path bare = fs::path(dir.path().toStdString()) / "bare.mipgloss";
+    saveScene(noCamera, bare);
+    QFile in(QString::fromStdString(bare.string()));
+    ASSERT_TRUE(in.open(QIODevice::ReadOnly));
+    EXPECT_FALSE(QJsonDocument::fromJson(in.readAll()).object().contains("camera"));
+    EXPECT_FALSE(loadScene(bare).camera.has_value());
+
+    // Older versions load with no camera, even one holding the key (it meant nothing then).
+    const std::string cameraJson =
+        R"("camera": {"target": [0, 1, 2], "distance": 3, "yawDegrees": 4, "pitchDegrees": 5, "fovYDegrees": 35})";
+    for (int version = 1; version < kSceneVersionCamera; ++version) {
+        const Scene old = loadScene(writeScene(dir, "v" + std::to_string(version) + ".json",
+                                               R"({"format": "mipgloss-scene", "version": )" +
+                                                   std::to_string(version) + ", " + cameraJson + "}"));
+        EXPECT_FALSE(old.camera.has_value()) << "version " << version;
+    }
+    const Scene six = loadScene(writeScene(dir, "v6.json", R"({"format": "mipgloss-scene", "version": 6, )" +
+                                                                cameraJson + "}"));
+    ASSERT_TRUE(six.camera.has_value());
+    EXPECT_EQ(six.camera->target, glm::vec3(0.0f, 1.0f, 2.0f));
+    EXPECT_EQ(six.camera->fovYDegrees, 35.0f);
+    // A newer version is still refused.
+    const std::string future = loadError(dir, "future.json", R"({"format": "mipgloss-scene", "version": )" +
+                                                                 std::to_string(kSceneVersion + 1) + "}");
+    EXPECT_NE(future.find("future.json"), std::string::npos) << future;
+    EXPECT_NE(future.find("version"), std::string::npos) << future;
+
+    // Each bad value: the file and the key named, nothing loaded.
+    struct Bad {
+        const char* key;
+        std::string camera;
+    };
+    const std::string good = R"("target": [0, 0, 0], "distance": 5, "yawDegrees": 0, "pitchDegrees": 10, "fovYDegrees": 30)";
+    auto with = [&](const std::string& key, const std::string& value) {
+        std::string fields = good;
+        const std::size_t at = fields.find("\"" + key + "\": ");
+        const std::size_t from = at + key.size() + 4;
+        const std::size_t to = key == "target" ? fields.find(']', from) + 1 : fields.find_first_of(",}", from);
+        fields.replace(from, (to == std::string::npos ? fields.size() : to) - from, value);
+        return fields;
+    };
+    const std::vector<Bad> bad = {
+        {"camera.target", with("target", "[0, 1]")},
+        {"camera.target[1]", with("target", R"([0, "up", 0])")},
+        {"camera.target[2]", with("target", "[0, 0, 1e39]")},  // beyond single precision
+        {"camera.distance", with("distance", "0")},
+        {"camera.distance", with("distance", "-2")},
+        {"camera.distance", with("distance", "1e39")},  // infinite as a float
+        {"camera.distance", with("distance", "1e30")},
+        {"camera.distance", with("distance", "null")},
+        {"camera.yawDegrees", with("yawDegrees", "1e300")},
+        {"camera.yawDegrees", with("yawDegrees", R"("left")")},
+        {"camera.pitchDegrees", with("pitchDegrees", "89.5")},
+        {"camera.pitchDegrees", with("pitchDegrees", "-90")},
+        {"camera.fovYDegrees", with("fovYDegrees", "4")},
+        {"camera.fovYDegrees", with("fovYDegrees", "150")},
+        {"camera.fovYDegrees", with("fovYDegrees", "0")},
+        {"camera.fovYDegrees", R"("target": [0, 0, 0], "distance": 5, "yawDegrees": 0, "pitchDegrees": 10)"},
+    };
+    for (const Bad& b : bad) {
+        const std::string error = loadError(dir, "bad.mipgloss", R"({"format": "mipgloss-scene", "version": 6,
+            "objects": [{"mesh": "builtin:sphere"}], "camera": {)" + b.camera + "}}");
+        EXPECT_NE(error.find("bad.mipgloss"), std::string::npos) << b.camera << ": " << error;
+        EXPECT_NE(error.find(std::string("\"") + b.key), std::string::npos) << b.camera << ": " << error;
+    }
+    const std::string notObject = loadError(dir, "bad.mipgloss", R"({"format": "mipgloss-scene", "version": 6,
+        "camera": [1, 2]})");
+    EXPECT_NE(notObject.find("\"camera\""), std::string::npos) << notObject;
+
+    // Saving never writes a camera that would not load again.
+    for (float pitch : {90.0f, std::nanf("")}) {
+        scene.camera->pitchDegrees = pitch;
+        const fs::path refused = fs::path(dir.path().toStdString()) / "refused.mipgloss";
+        try {
+            saveScene(scene, refused);
+            ADD_FAILURE() << "saved a camera with pitch " << pitch;
+        } catch (const SceneFileError& e) {
+            EXPECT_NE(std::string(e.what()).find("camera.pitchDegrees"), std::string::npos) << e.what();
+        }
+        EXPECT_FALSE(fs::exists(refused));
+    }
+}

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -35,6 +36,30 @@ constexpr int kMaxSamples = 16;
 constexpr double kMaxExposureEv = 20.0;
 
 bool isBuiltin(const std::string& s) { return s.rfind(kBuiltinPrefix, 0) == 0; }
+
+// A saved camera's limits (scene_file.h): the orbit camera's own pitch limit and zoom range.
+constexpr float kMaxCameraPitch = 89.0f;
+constexpr float kMaxCameraDistance = 1e9f;
+
+// What makes a camera unfit for a file: its key and the reason, or an empty key when nothing does.
+struct CameraProblem {
+    std::string key, reason;
+};
+CameraProblem cameraProblem(const OrbitCamera& c) {
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(c.target[i]))
+            return {"camera.target[" + std::to_string(i) + "]", show(c.target[i]) + " is not a finite number"};
+    if (!(c.distance > 0.0f && c.distance <= kMaxCameraDistance))
+        return {"camera.distance", show(c.distance) + " is not in (0, " + show(kMaxCameraDistance) + "]"};
+    if (!std::isfinite(c.yawDegrees)) return {"camera.yawDegrees", show(c.yawDegrees) + " is not a finite number"};
+    if (!(std::abs(c.pitchDegrees) <= kMaxCameraPitch))
+        return {"camera.pitchDegrees", show(c.pitchDegrees) + " is not in [-" + show(kMaxCameraPitch) + ", " +
+                                           show(kMaxCameraPitch) + "]"};
+    if (!(c.fovYDegrees >= kMinCameraFovY && c.fovYDegrees <= kMaxCameraFovY))
+        return {"camera.fovYDegrees", show(c.fovYDegrees) + " is not in [" + show(kMinCameraFovY) + ", " +
+                                          show(kMaxCameraFovY) + "]"};
+    return {};
+}
 
 fs::path absoluteNormal(const fs::path& p) {
     std::error_code ec;
@@ -120,6 +145,21 @@ public:
         t.scale = static_cast<float>(number(o, "scale", where, t.scale));
         if (!(t.scale > 0.0f)) fail("\"" + where + ".scale\" must be positive");
         return t;
+    }
+
+    // The saved view (version 6): every key required and checked, nothing clamped (scene_file.h).
+    OrbitCamera camera(const QJsonObject& o) const {
+        const std::string where = "camera";
+        for (const char* key : {"target", "distance", "yawDegrees", "pitchDegrees", "fovYDegrees"})
+            if (!o.contains(QLatin1String(key))) fail("missing \"" + keyName(where, key) + "\"");
+        OrbitCamera c;
+        c.target = vec3(o, "target", where, c.target);
+        c.distance = static_cast<float>(number(o, "distance", where, c.distance));
+        c.yawDegrees = static_cast<float>(number(o, "yawDegrees", where, c.yawDegrees));
+        c.pitchDegrees = static_cast<float>(number(o, "pitchDegrees", where, c.pitchDegrees));
+        c.fovYDegrees = static_cast<float>(number(o, "fovYDegrees", where, c.fovYDegrees));
+        if (const CameraProblem p = cameraProblem(c); !p.key.empty()) fail("\"" + p.key + "\" " + p.reason);
+        return c;
     }
 
     // Built-ins and files, each loaded once per scene file and shared by the objects using it.
@@ -227,6 +267,15 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
         {"format", kSceneFormat}, {"version", kSceneVersion}, {"environment", environment},
         {"display", display},     {"materials", materials}, {"objects", objects},
     };
+    if (const std::optional<OrbitCamera>& c = scene.camera) {
+        root.insert("camera", QJsonObject{
+                                  {"target", vec3ToJson(c->target)},
+                                  {"distance", c->distance},
+                                  {"yawDegrees", c->yawDegrees},
+                                  {"pitchDegrees", c->pitchDegrees},
+                                  {"fovYDegrees", c->fovYDegrees},
+                              });
+    }
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
 
@@ -299,6 +348,9 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
         object.mesh = reader.mesh(source, where + " (\"" + object.name + "\")", object.meshSource);
         scene.objects.push_back(std::move(object));
     }
+    // Version 6: the saved view; older files have none and are framed when opened.
+    if (version >= kSceneVersionCamera && root.contains(QLatin1String("camera")))
+        scene.camera = reader.camera(reader.object(root, "camera", "camera", true));
     if (report) report->warnings.insert(report->warnings.end(), local.warnings.begin(),
                                         local.warnings.end());
     return scene;
@@ -319,6 +371,10 @@ void saveScene(const Scene& scene, const fs::path& file) {
         checkLambda(scene.materialOf(o).lambda, "objects[" + std::to_string(i) + "].material.lambda");
         if (const std::string problem = layersProblem(scene.materialOf(o).layers); !problem.empty())
             throw SceneFileError(file, "cannot save \"objects[" + std::to_string(i) + "].material.layers\": " + problem);
+    }
+    if (scene.camera) {
+        if (const CameraProblem p = cameraProblem(*scene.camera); !p.key.empty())
+            throw SceneFileError(file, "cannot save \"" + p.key + "\": " + p.reason);
     }
     try {
         writeFileAtomically(file, sceneToJson(scene, file));

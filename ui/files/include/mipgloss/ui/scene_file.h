@@ -1,7 +1,7 @@
-// Scene files: JSON, format "mipgloss-scene", version 5 (versions 1 to 4 still load, see below).
+// Scene files: JSON, format "mipgloss-scene", version 6 (versions 1 to 5 still load, see below).
 //
 //   {
-//     "format": "mipgloss-scene", "version": 5,
+//     "format": "mipgloss-scene", "version": 6,
 //     "environment": {"source": "env/sky.exr" | "builtin:courtyard", "layout": "auto",
 //                     "handedness": "right", "faceSize": 128, "builder": "phong"},
 //     "display": {"showBackground": true, "backgroundLambda": 0, "exposureEv": 0,
@@ -13,7 +13,9 @@
 //     "objects": [{"name": "bunny", "mesh": "meshes/bunny.obj" | "builtin:teapot" | "builtin:sphere",
 //                  "visible": true,
 //                  "transform": {"translation": [x, y, z], "rotationDegrees": [x, y, z], "scale": 1},
-//                  "material": "gold"}]
+//                  "material": "gold"}],
+//     "camera": {"target": [x, y, z], "distance": 5, "yawDegrees": 0, "pitchDegrees": 10,
+//                "fovYDegrees": 30} (optional, version 6)
 //   }
 //
 // Materials (version 3). A scene stores the materials its objects use, once each, under names
@@ -51,6 +53,13 @@
 // "environment.rotationDegrees"; it loads into the display setting. Either is a finite number,
 // kept in [−180°, 180°].
 //
+// The camera (version 6) is the view saved with the scene (Scene::camera); a file without it (every
+// older version) is framed when opened. When present every key is required and checked: "target"
+// three finite numbers, "distance" in (0, 1e9], "yawDegrees" finite, "pitchDegrees" in [−89°, 89°]
+// (the orbit camera's own limit, camera.h), "fovYDegrees" in [kMinCameraFovY, kMaxCameraFovY]; a
+// bad value is an error naming the file and the key ("camera.pitchDegrees"), never a clamp. Saving
+// refuses a camera that would not load again.
+//
 // Files are always written as the newest version.
 //
 // Paths: saved relative to the scene file's folder when the file lies inside it or at most two
@@ -80,7 +89,11 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 5;
+inline constexpr int kSceneVersion = 6;
+// The version that saved the camera ("camera", optional; older files are framed when opened).
+inline constexpr int kSceneVersionCamera = 6;
+// A saved camera's vertical field of view, in degrees (inclusive).
+inline constexpr float kMinCameraFovY = 5.0f, kMaxCameraFovY = 120.0f;
 // The version that added layered materials ("layers" in a material; files without them load alike).
 inline constexpr int kSceneVersionLayered = 5;
 // The version that named materials and shared them between objects.
