@@ -1,5 +1,6 @@
 #include "render_command.h"
 
+#include "frame_pattern.h"
 #include "material_args.h"
 #include "offscreen_session.h"
 
@@ -13,6 +14,7 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/scene.h"
+#include "mipgloss/scene/turntable.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/offscreen.h"
@@ -21,19 +23,24 @@
 #include <QFileInfo>
 #include <QIODevice>
 #include <QImage>
+#include <QImageWriter>
 #include <QString>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -47,13 +54,16 @@ const char* const kRenderUsage = R"(
                   [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
                   [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
-                  [--aov AOV.exr] --out IMAGE.png|IMAGE.exr
+                  [--spin DEG] [--turntable N] [--turntable-spin object|environment]
+                  [--compare-builder NAME] [--compare-env FILE]
+                  [--aov AOV.exr] --out IMAGE.png|IMAGE.exr|PATTERN
   mipgloss bench-render [--objects N] [--size WxH] [--frames F] [--mesh FILE | --million]
 
 render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X display; under
   CI: xvfb-run). With no scene and no mesh: the default scene (the paper's Figure 1). With --env
   alone: just the environment. Meshes are placed in a row and framed whatever their scale.
-  SCENE.mipgloss a scene saved by mipgloss-gui (older .json scenes too)
+  SCENE.mipgloss a scene saved by mipgloss-gui (older .json scenes too); drawn through the
+                 camera saved with it, if any (with --size's aspect), else framed
   --env FILE     environment (as for bake); replaces the scene's
   --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM), repeatable; replaces the scene's objects
   --library LIB.mglib --material NAME
@@ -69,7 +79,24 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  --specular, default 0.04; a metal's F0 is its base colour), and a clear coat of
                  weight W; roughness 0 (mirror) to 1; --lambda/--exponent then set the glossy
                  layer's lobe instead of --roughness. Defaults: 0.8,0.8,0.8, 0, 0.5, 0.04, 0, 0.05
-  --size WxH     image size (default 1024x384 for the default scene, else 800x600)
+  --size WxH     image size (default 1024x384 for the default scene, else 800x600); at most
+                 what the OpenGL can draw (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE,
+                 GL_MAX_VIEWPORT_DIMS), and --samples at most GL_MAX_SAMPLES
+  --yaw DEG --pitch DEG
+                 the camera's angles (the scene is framed again from there)
+  --spin DEG     the scene turned by DEG about the vertical axis through the camera's target:
+                 the objects on a turntable under the fixed environment (the background stays),
+                 or with --turntable-spin environment only the environment
+  --turntable N  N frames of a whole turn (frame i at 360*i/N degrees, after --spin: a seamless
+                 loop), 1 to 3600; --out is then a printf pattern with one integer conversion,
+                 e.g. frames/turn_%03d.png or %d.exr, each frame written whole or not at all
+  --turntable-spin object|environment
+                 what --turntable and --spin turn (default object)
+  --compare-builder NAME  --compare-env FILE
+                 one picture: the left half (columns 0 to W/2-1) the render as it is, the right
+                 half the same scene and camera with the environment built by builder NAME
+                 and/or from FILE (same face size); a PNG gets a 1-pixel divider in the right
+                 half's first column, an EXR stays pure data. Not with --turntable or --aov
   --env-size N   base face size of the cube (default: the scene's, 128)
   --builder NAME mip builder (default phong; --method is the old name)
   --out FILE     output image: .exr writes the linear, scene-referred picture (float RGB,
@@ -92,16 +119,152 @@ bench-render: frame time of N teapots with N different lambdas against the same 
 
 namespace {
 
-bool parseSize(const std::string& text, int& w, int& h) {
+// --size WxH: two whole numbers of at least 1, or a UsageError naming the flag and the value. What
+// the OpenGL can draw is checked once a context exists (checkRenderSize).
+void parseSize(const std::string& flag, const std::string& text, int& w, int& h) {
     const auto x = text.find('x');
-    if (x == std::string::npos) return false;
-    try {
-        w = std::stoi(text.substr(0, x));
-        h = std::stoi(text.substr(x + 1));
-    } catch (...) {
-        return false;
+    auto whole = [&](const std::string& part, const char* axis) {
+        char* end = nullptr;
+        errno = 0;
+        const long long v = part.empty() ? 0 : std::strtoll(part.c_str(), &end, 10);
+        if (part.empty() || *end != '\0' || errno == ERANGE || v > 1'000'000'000)
+            throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
+        if (v < 1) throw UsageError(flag + " " + text + ": the " + axis + " " + part + " must be at least 1");
+        return static_cast<int>(v);
+    };
+    if (x == std::string::npos)
+        throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
+    w = whole(text.substr(0, x), "width");
+    h = whole(text.substr(x + 1), "height");
+}
+
+// Refuses, before anything is drawn, a size or a sample count this OpenGL cannot draw
+// (RenderSizeLimits), naming the flag, the value and the limit.
+void checkRenderSize(const ui::OffscreenRenderer& renderer, const std::string& sizeFlag, int w, int h,
+                     std::optional<int> samples) {
+    const ui::RenderSizeLimits limits = renderer.maxRenderSize();
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    if (w > limits.maxWidth)
+        throw UsageError(sizeFlag + " " + size + ": the width " + std::to_string(w) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxWidth) + " (" + limits.widthLimit + ")");
+    if (h > limits.maxHeight)
+        throw UsageError(sizeFlag + " " + size + ": the height " + std::to_string(h) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxHeight) + " (" + limits.heightLimit + ")");
+    if (samples && *samples > limits.maxSamples)
+        throw UsageError("--samples " + std::to_string(*samples) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxSamples) + " (GL_MAX_SAMPLES)");
+}
+
+std::string lowerExtension(const fs::path& file) {
+    std::string s = file.extension().string();
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// An output picture's format from its extension: .exr (linear float) or one Qt writes, else a
+// UsageError naming the flag (checked before anything is drawn).
+void checkImageFormat(const std::string& flag, const fs::path& file) {
+    const std::string ext = lowerExtension(file);
+    if (ext == ".exr") return;
+    const QByteArray format = QByteArray::fromStdString(ext.empty() ? ext : ext.substr(1));
+    if (format.isEmpty() || !QImageWriter::supportedImageFormats().contains(format))
+        throw UsageError(flag + " " + file.string() + ": no image format for '" + ext + "' (.exr, .png, .jpg, ...)");
+}
+
+// Refuses an output whose folder cannot take a file, naming it, before anything is drawn (a
+// turntable never stops half-written for want of a folder). A missing folder is made when the
+// first file is written (writeAtomically), so then its nearest existing parent must take one.
+void checkWritableFolder(const fs::path& file) {
+    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    fs::path existing = folder;
+    std::error_code ec;
+    while (!fs::exists(existing, ec) && existing != existing.parent_path())
+        existing = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+    if (!fs::is_directory(existing, ec))
+        throw std::runtime_error(folder.string() + ": cannot write " + file.filename().string() + " there: " +
+                                 existing.string() + " is not a folder");
+    // Only trying tells (permissions, a read-only mount, root's rights): a nameless file, as the
+    // atomic write makes, or a named probe where the file system has none.
+    int fd = ::open(existing.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+    if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+        std::string probe = (existing / ".mipgloss-probe-XXXXXX").string();
+        fd = ::mkstemp(probe.data());
+        if (fd >= 0) ::unlink(probe.c_str());
     }
-    return w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
+    if (fd < 0)
+        throw std::runtime_error(folder.string() + ": cannot write " + file.filename().string() + " there: " +
+                                 std::strerror(errno));
+    ::close(fd);
+}
+
+// PNG, JPEG... through the atomic write, the format from the extension as QImage::save(path) picks it.
+void saveImage(const QImage& image, const fs::path& file) {
+    const QByteArray format = QFileInfo(QString::fromStdString(file.string())).suffix().toLower().toLatin1();
+    ui::writeFileAtomically(file, [&](QIODevice& device) { return image.save(&device, format.constData()); });
+}
+
+// One render: the tone-mapped picture and, when asked, the linear one (bottom row first).
+struct Picture {
+    QImage image;
+    std::vector<glm::vec4> hdr;
+    int width = 0, height = 0;
+};
+
+Picture draw(ui::OffscreenRenderer& renderer, const Scene& scene, const OrbitCamera& camera,
+             const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height, bool linear,
+             const fs::path& out) {
+    Picture p;
+    p.image = renderer.render(scene, camera, environment, width, height);
+    if (p.image.isNull()) throw std::runtime_error(out.string() + ": the render failed");
+    p.width = width;
+    p.height = height;
+    if (linear) {
+        int w = 0, h = 0;
+        p.hdr = renderer.lastHdr(w, h);
+        if (w != width || h != height) throw std::runtime_error(out.string() + ": the render failed");
+    }
+    return p;
+}
+
+// .exr: the linear picture (float RGB); anything else the tone-mapped one. Atomically either way.
+void writePicture(const Picture& p, const fs::path& file) {
+    if (lowerExtension(file) == ".exr") {
+        std::vector<float> rgb;
+        rgb.reserve(static_cast<std::size_t>(p.width) * static_cast<std::size_t>(p.height) * 3);
+        for (int y = p.height - 1; y >= 0; --y)  // hdr is bottom row first; the file top row first
+            for (int x = 0; x < p.width; ++x) {
+                const glm::vec4& c = p.hdr[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.width) +
+                                           static_cast<std::size_t>(x)];
+                rgb.insert(rgb.end(), {c.r, c.g, c.b});
+            }
+        writeFloatChannels(file, p.width, p.height, {"R", "G", "B"}, rgb);
+    } else {
+        saveImage(p.image, file);
+    }
+}
+
+// The comparison: columns [0, W/2) from `left`, [W/2, W) from `right`; the tone-mapped picture
+// gets a 1-pixel divider in the right half's first column, the linear one stays data.
+Picture besideEachOther(Picture left, const Picture& right) {
+    const int half = left.width / 2;
+    for (int y = 0; y < left.height; ++y) {
+        auto* to = reinterpret_cast<QRgb*>(left.image.scanLine(y));
+        const auto* from = reinterpret_cast<const QRgb*>(right.image.constScanLine(y));
+        std::copy(from + half, from + left.width, to + half);
+        if (half < left.width) to[half] = qRgb(255, 255, 255);
+    }
+    if (!left.hdr.empty())
+        for (int y = 0; y < left.height; ++y) {
+            const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(left.width);
+            std::copy(right.hdr.begin() + static_cast<std::ptrdiff_t>(row + static_cast<std::size_t>(half)),
+                      right.hdr.begin() + static_cast<std::ptrdiff_t>(row + static_cast<std::size_t>(left.width)),
+                      left.hdr.begin() + static_cast<std::ptrdiff_t>(row + static_cast<std::size_t>(half)));
+        }
+    return left;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Entry `name` of library `file`. Throws LibraryFileError naming the file.
@@ -115,12 +278,6 @@ LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
     throw ui::LibraryFileError(
         file, "no material named \"" + name + "\"" +
                   (names.empty() ? std::string(" (the library is empty)") : " (there are " + names + ")"));
-}
-
-// PNG, JPEG... through the atomic write, the format from the extension as QImage::save(path) picks it.
-void saveImage(const QImage& image, const fs::path& file) {
-    const QByteArray format = QFileInfo(QString::fromStdString(file.string())).suffix().toLower().toLatin1();
-    ui::writeFileAtomically(file, [&](QIODevice& device) { return image.save(&device, format.constData()); });
 }
 
 }  // namespace
@@ -139,6 +296,11 @@ int runRender(Args args, const char* argv0) {
     std::optional<Builder> builder;
     bool noBackground = false, quiet = false;
     int width = 0, height = 0;
+    std::optional<float> spin;
+    std::optional<int> turntable;
+    TurntableSpin spinKind = TurntableSpin::Object;
+    std::optional<Builder> compareBuilder;
+    std::optional<fs::path> compareEnv;
     while (!args.empty()) {
         const std::string a = args.next();
         auto value = [&] { return args.value(a); };
@@ -169,7 +331,28 @@ int runRender(Args args, const char* argv0) {
             if (!parseToneMap(value(), t)) throw UsageError("--tonemap is linear, reinhard or aces");
             toneMap = t;
         } else if (a == "--size") {
-            if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH, e.g. 800x600");
+            parseSize(a, value(), width, height);
+        } else if (a == "--spin") {
+            spin = parseFloat(a, value(), -36000.0f, 36000.0f);
+        } else if (a == "--turntable") {
+            const std::string v = value();
+            char* end = nullptr;
+            errno = 0;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || errno == ERANGE || n < 1 || n > 3600)
+                throw UsageError("--turntable needs a whole number of frames from 1 to 3600, got '" + v + "'");
+            turntable = static_cast<int>(n);
+        } else if (a == "--turntable-spin") {
+            const std::string v = value();
+            if (!parseTurntableSpin(v, spinKind))
+                throw UsageError("--turntable-spin is object or environment, got '" + v + "'");
+        } else if (a == "--compare-builder") {
+            const std::string name = value();
+            Builder b;
+            if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "' for --compare-builder");
+            compareBuilder = b;
+        } else if (a == "--compare-env") {
+            compareEnv = value();
         } else if (a == "--no-background") noBackground = true;
         else if (a == "--quiet") quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
@@ -179,11 +362,30 @@ int runRender(Args args, const char* argv0) {
     if (!outPath) throw UsageError("render needs --out IMAGE");
     if (libraryPath.has_value() != libraryMaterial.has_value())
         throw UsageError("--library LIB.mglib and --material NAME go together");
+    const bool compare = compareBuilder || compareEnv;
+    const char* const compareFlag = compareBuilder ? "--compare-builder" : "--compare-env";
+    if (compare && turntable) throw UsageError(std::string(compareFlag) + " and --turntable do not go together (one picture or a turn)");
+    if (compare && aovPath) throw UsageError(std::string(compareFlag) + " and --aov do not go together (the AOV of which half?)");
+    if (turntable && aovPath) throw UsageError("--turntable and --aov do not go together");
+    // With --turntable, --out names the frames (frame_pattern.h); the first frame's name stands
+    // for all of them in the checks below.
+    FramePattern frames;
+    if (turntable) {
+        if (const std::string problem = parseFramePattern(outPath->string(), frames); !problem.empty())
+            throw UsageError("--out " + outPath->string() + " with --turntable: " + problem);
+    }
+    const fs::path firstOut = turntable ? fs::path(frames.format(0)) : *outPath;
+    checkImageFormat("--out", firstOut);
     // Read before the OpenGL session starts, so a bad library is reported at once.
     const std::optional<LibraryMaterial> libraryMaterialEntry =
         libraryPath ? std::optional(libraryEntry(*libraryPath, *libraryMaterial)) : std::nullopt;
     OffscreenSession session(argv0, "render");
     ui::OffscreenRenderer& renderer = session.renderer();
+    // Before anything is loaded or drawn: what the OpenGL cannot draw, and a folder that cannot
+    // take the pictures.
+    checkRenderSize(renderer, "--size", width, height, samples);
+    checkWritableFolder(firstOut);
+    if (aovPath) checkWritableFolder(*aovPath);
 
     // The scene: a file, meshes, the environment alone, or the default.
     Scene scene;
@@ -239,49 +441,107 @@ int runRender(Args args, const char* argv0) {
     if (noBackground) scene.display.showBackground = false;
     if (samples) scene.display.samples = *samples;
     if (width == 0) width = 800, height = 600;
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const bool linear = lowerExtension(firstOut) == ".exr";
 
     const auto start = std::chrono::steady_clock::now();
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-    const double prepareSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double prepareSeconds = secondsSince(start);
     if (!quiet)
         for (const std::string& w : environment->report.warnings)
             std::cerr << "mipgloss: warning: " << w << '\n';
 
-    OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    // The scene's own camera (its field of view and framing as saved; --size gives the aspect),
+    // unless its objects were replaced; else framed. --yaw/--pitch frame again from there.
+    OrbitCamera camera = scene.camera && meshPaths.empty() ? *scene.camera : framingCamera(scene, aspect);
     if (yaw || pitch) {
         if (yaw) camera.yawDegrees = *yaw;
         if (pitch) camera.pitchDegrees = *pitch;
-        camera.frame(sceneBounds(scene), static_cast<float>(width) / static_cast<float>(height));
+        camera.frame(sceneBounds(scene), aspect);
     }
-    // The settled picture: each lobe in use from its own cube.
+    const float rotation = scene.display.environmentRotationDegrees;
+    // The scene turned by `degrees` (turntable.h): the camera to draw through, the scene's
+    // environment rotation set to match.
+    auto turned = [&](double degrees) {
+        const TurnedView view = turnedView(camera, rotation, spinKind, static_cast<float>(degrees));
+        scene.display.environmentRotationDegrees = view.environmentRotationDegrees;
+        return view.camera;
+    };
+
+    // The settled picture: each lobe in use from its own cube. Made once: turning the view
+    // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
     const std::vector<std::shared_ptr<const LobeCube>> lobes = makeLobeCubes(*environment, scene);
-    const double lobeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - lobesStart).count();
+    const double lobeSeconds = secondsSince(lobesStart);
     renderer.setLobes(lobes);
-    const QImage image = renderer.render(scene, camera, environment, width, height);
-    if (image.isNull()) throw std::runtime_error(outPath->string() + ": the render failed");
-    auto lower = [](std::string s) {
-        for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return s;
+    // The status line, with the counters of the render that was `plain` (a comparison's left half).
+    ui::RenderCounters plainCounters;
+    auto report = [&](const std::string& what, const std::string& extra) {
+        if (quiet) return;
+        const ui::RenderCounters& c = plainCounters;
+        std::cerr << "mipgloss: " << what << ": " << width << "x" << height << ", " << scene.objects.size()
+                  << " objects (" << c.objectsDrawn << " drawn, " << c.objectsCulled
+                  << " culled), environment " << environment->settings.faceSize << "² "
+                  << builderName(environment->settings.builder) << " filtered through level "
+                  << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
+                  << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
+                  << " lobe cube(s) made in " << lobeSeconds << " s (" << c.objectsSettled
+                  << " objects settled), environment prepared in " << prepareSeconds << " s" << extra << "; "
+                  << renderer.glDescription() << '\n';
     };
-    if (lower(outPath->extension().string()) == ".exr") {
-        int w = 0, h = 0;
-        const std::vector<glm::vec4> hdr = renderer.lastHdr(w, h);
-        std::vector<float> rgb;
-        rgb.reserve(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
-        for (int y = h - 1; y >= 0; --y)  // lastHdr is bottom row first; the file top row first
-            for (int x = 0; x < w; ++x) {
-                const glm::vec4& p = hdr[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
-                rgb.insert(rgb.end(), {p.r, p.g, p.b});
-            }
-        writeFloatChannels(*outPath, w, h, {"R", "G", "B"}, rgb);
-    } else {
-        saveImage(image, *outPath);
+
+    if (turntable) {
+        // N frames of a whole turn: frame i at --spin + 360·i/N, so the last is one step before
+        // the first and the loop is seamless.
+        const auto framesStart = std::chrono::steady_clock::now();
+        const double first = spin.value_or(0.0f);
+        for (int i = 0; i < *turntable; ++i) {
+            const double degrees = first + 360.0 * i / *turntable;
+            const fs::path file = frames.format(i);
+            writePicture(draw(renderer, scene, turned(degrees), environment, width, height, linear, file), file);
+            plainCounters = renderer.counters();
+            if (!quiet)
+                std::cerr << "mipgloss: frame " << i + 1 << "/" << *turntable << " (" << degrees << "°): "
+                          << file.string() << '\n';
+        }
+        const double framesSeconds = secondsSince(framesStart);
+        std::ostringstream extra;
+        extra << "; " << *turntable << " frames, " << turntableSpinName(spinKind) << " spin, in " << framesSeconds
+              << " s (" << framesSeconds / *turntable << " s a frame)";
+        report(outPath->string(), extra.str());
+        return 0;
     }
+
+    const OrbitCamera view = spin ? turned(*spin) : camera;
+    const auto drawStart = std::chrono::steady_clock::now();
+    Picture picture = draw(renderer, scene, view, environment, width, height, linear, *outPath);
+    plainCounters = renderer.counters();
+    std::ostringstream extra;
+    if (compare) {
+        // The right half: the same scene and camera, the environment built the other way (or
+        // from the other file) at the same face size, its own lobe cubes made for it.
+        EnvironmentSettings other = scene.environment;
+        if (compareBuilder) other.builder = *compareBuilder;
+        if (compareEnv) other.source = compareEnv->string();
+        const auto otherStart = std::chrono::steady_clock::now();
+        auto otherEnvironment = std::make_shared<const PreparedEnvironment>(
+            prepareEnvironment(other, needsFor(scene, other.faceSize)));
+        if (!quiet)
+            for (const std::string& w : otherEnvironment->report.warnings)
+                std::cerr << "mipgloss: warning: " << w << '\n';
+        renderer.setLobes(makeLobeCubes(*otherEnvironment, scene));
+        const double otherSeconds = secondsSince(otherStart);
+        picture = besideEachOther(std::move(picture), draw(renderer, scene, view, otherEnvironment, width, height,
+                                                           linear, *outPath));
+        extra << "; right half: environment " << (compareEnv ? compareEnv->string() : other.source) << " "
+              << builderName(other.builder) << ", prepared with its lobe cubes in " << otherSeconds << " s";
+    }
+    writePicture(picture, *outPath);
+    if (spin) extra << "; " << turntableSpinName(spinKind) << " spin " << *spin << "°";
+    extra << "; drawn and written in " << secondsSince(drawStart) << " s";
     if (aovPath) {
-        const ui::AovImage aov = renderer.renderAov(scene, camera, environment, width, height);
+        const ui::AovImage aov = renderer.renderAov(scene, view, environment, width, height);
         // The single-lobe account, and for a scene with a layered material each layer's (render's
         // usage text): X.dirX X.dirY X.dirZ X.exponent X.weight.R X.weight.G X.weight.B, and NdotV.
         std::vector<std::string> names{"dirX", "dirY", "dirZ", "exponent", "exact"};
@@ -309,17 +569,7 @@ int runRender(Args args, const char* argv0) {
             }
         writeFloatChannels(*aovPath, aov.width, aov.height, names, values);
     }
-    if (!quiet) {
-        const ui::RenderCounters& c = renderer.counters();
-        std::cerr << "mipgloss: " << outPath->string() << ": " << width << "x" << height << ", "
-                  << scene.objects.size() << " objects (" << c.objectsDrawn << " drawn, "
-                  << c.objectsCulled << " culled), environment " << environment->settings.faceSize
-                  << "² " << builderName(environment->settings.builder) << " filtered through level "
-                  << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
-                  << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
-                  << " lobe cube(s) made in " << lobeSeconds << " s (" << c.objectsSettled
-                  << " objects settled), environment prepared in " << prepareSeconds << " s; " << renderer.glDescription() << '\n';
-    }
+    report(outPath->string(), extra.str());
     return 0;
 }
 
@@ -382,11 +632,12 @@ int runRenderBench(Args args, const char* argv0) {
         else if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
         else if (a == "--frames") frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
         else if (a == "--size") {
-            if (!parseSize(value(), width, height)) throw UsageError("--size needs WxH");
+            parseSize(a, value(), width, height);
         } else throw UsageError("unknown option '" + a + "'");
     }
     OffscreenSession session(argv0, "bench-render");
     ui::OffscreenRenderer& renderer = session.renderer();
+    checkRenderSize(renderer, "--size", width, height, std::nullopt);
     if (million) {
         // A 1M-triangle sphere written as binary PLY, then loaded like any user file.
         const fs::path file = fs::temp_directory_path() / ("mipgloss-million-" + std::to_string(::getpid()) + ".ply");

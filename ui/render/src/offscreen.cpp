@@ -87,6 +87,11 @@ std::string OffscreenRenderer::glDescription() const {
     return impl_->renderer.glDescription();
 }
 
+RenderSizeLimits OffscreenRenderer::maxRenderSize() const {
+    if (!impl_->ready || !impl_->context.makeCurrent(&impl_->surface)) return {};
+    return impl_->renderer.maxRenderSize();
+}
+
 void OffscreenRenderer::finish() {
     if (impl_->ready && impl_->context.makeCurrent(&impl_->surface)) impl_->context.functions()->glFinish();
 }

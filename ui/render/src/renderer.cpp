@@ -848,6 +848,28 @@ std::vector<glm::vec4> Renderer::readHdr(int& width, int& height) {
     return pixels;
 }
 
+RenderSizeLimits Renderer::maxRenderSize() const {
+    RenderSizeLimits limits;
+    QOpenGLFunctions_4_1_Core* gl = impl_->gl;
+    if (!gl) return limits;
+    GLint texture = 0, renderbuffer = 0, samples = 0;
+    GLint viewport[2] = {0, 0};
+    gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+    gl->glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+    gl->glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    gl->glGetIntegerv(GL_MAX_SAMPLES, &samples);
+    auto smallest = [&](int& size, const char*& name, GLint viewportLimit) {
+        size = texture;
+        name = "GL_MAX_TEXTURE_SIZE";
+        if (renderbuffer < size) size = renderbuffer, name = "GL_MAX_RENDERBUFFER_SIZE";
+        if (viewportLimit < size) size = viewportLimit, name = "GL_MAX_VIEWPORT_DIMS";
+    };
+    smallest(limits.maxWidth, limits.widthLimit, viewport[0]);
+    smallest(limits.maxHeight, limits.heightLimit, viewport[1]);
+    limits.maxSamples = samples;
+    return limits;
+}
+
 std::string Renderer::glDescription() const {
     if (!impl_->gl) return "no OpenGL";
     auto str = [&](GLenum name) {

@@ -37,6 +37,8 @@ public:
 
     const RenderCounters& counters() const;
     std::string glDescription() const;
+    // What this context can draw (Renderer::maxRenderSize); zeros before initialize().
+    RenderSizeLimits maxRenderSize() const;
     // Blocks until the GPU has finished (for timing).
     void finish();
 

@@ -45,6 +45,18 @@ struct RenderCounters {
     std::uint64_t objectsFromChain = 0;   // in the last frame: blurred, read from the chain
 };
 
+// The largest picture this OpenGL can draw, and what limits it: each axis is the smallest of
+// GL_MAX_TEXTURE_SIZE (the HDR targets are textures), GL_MAX_RENDERBUFFER_SIZE (the multisampled
+// ones) and GL_MAX_VIEWPORT_DIMS; `widthLimit` and `heightLimit` name the one that binds. The
+// multisampled target takes at most maxSamples samples (GL_MAX_SAMPLES). A size beyond these is
+// refused before anything is drawn (`mipgloss render --size`), never left to GL to fail.
+struct RenderSizeLimits {
+    int maxWidth = 0, maxHeight = 0;
+    const char* widthLimit = "";
+    const char* heightLimit = "";
+    int maxSamples = 0;
+};
+
 // The per-pixel account of a render (mipgloss render --aov), bottom row first.
 struct AovImage {
     int width = 0, height = 0;
@@ -108,6 +120,9 @@ public:
 
     // The GL version and renderer strings, for logs.
     std::string glDescription() const;
+
+    // What this context can draw (RenderSizeLimits); zeros before initialize().
+    RenderSizeLimits maxRenderSize() const;
 
 private:
     struct Impl;
