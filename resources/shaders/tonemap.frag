@@ -3,6 +3,10 @@
 uniform sampler2D uHdr;
 uniform float uExposure;  // 2^EV
 uniform int uToneMap;     // TONE_MAP_LINEAR (clipped), _REINHARD, _ACES (Narkowicz 2015 fit)
+// 1: the target's alpha is the coverage (Renderer::setTransparentBackground). The resolved colour
+// is then premultiplied by it (cleared to 0, edges averaged with it), so it is divided out before
+// the tone map, which is not linear, and the alpha written beside the colour (straight alpha).
+uniform int uAlpha;
 
 layout(location = 0) out vec4 fragColour;
 
@@ -17,6 +21,8 @@ vec3 srgbEncode(vec3 c) {
 }
 
 void main() {
-    vec3 hdr = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb;
-    fragColour = vec4(srgbEncode(toneMap(max(hdr, 0.0) * uExposure)), 1.0);
+    vec4 texel = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0);
+    float alpha = uAlpha == 1 ? clamp(texel.a, 0.0, 1.0) : 1.0;
+    vec3 hdr = alpha > 0.0 ? texel.rgb / alpha : vec3(0.0);
+    fragColour = vec4(srgbEncode(toneMap(max(hdr, 0.0) * uExposure)), alpha);
 }

@@ -55,14 +55,14 @@ MeshImporter::~MeshImporter() {
     delete worker_;
 }
 
-void MeshImporter::import(const QStringList& paths) {
+void MeshImporter::import(const QStringList& paths, Placement placement) {
     if (paths.isEmpty()) return;
     std::int64_t bytes = 0;
     for (const QString& path : paths) bytes += QFileInfo(path).size();
     if (bytes <= kBackgroundImportBytes) {
         std::vector<Loaded> results;
         for (const QString& path : paths) results.push_back(loadOne(path));
-        finish(results);
+        finish(results, placement);
         return;
     }
     emit backgroundStarted(static_cast<int>(paths.size()));
@@ -78,13 +78,13 @@ void MeshImporter::import(const QStringList& paths) {
             }
             return results;
         },
-        [this](JobOutcome<std::vector<Loaded>>&& outcome, const Job&) {
+        [this, placement](JobOutcome<std::vector<Loaded>>&& outcome, const Job&) {
             // Cancelled imports add nothing (the window that asked is closing).
-            if (outcome.value) finish(*outcome.value);
+            if (outcome.value) finish(*outcome.value, placement);
         });
 }
 
-void MeshImporter::finish(const std::vector<Loaded>& results) {
+void MeshImporter::finish(const std::vector<Loaded>& results, Placement placement) {
     QStringList errors, added, names;
     for (const Loaded& r : results) {
         for (const std::string& w : r.warnings) std::cerr << "mipgloss: " << w << '\n';
@@ -96,6 +96,8 @@ void MeshImporter::finish(const std::vector<Loaded>& results) {
     // One undo step for the whole import.
     QUndoStack* stack = document_->undoStack();
     if (!names.isEmpty()) stack->beginMacro(tr("Import %1").arg(names.join(QStringLiteral(", "))));
+    if (!names.isEmpty() && placement == Placement::ReplaceObjects)
+        for (int i = document_->objectCount() - 1; i >= 0; --i) document_->removeObject(i);
     for (const Loaded& r : results) {
         if (!r.mesh) continue;
         SceneObject object;

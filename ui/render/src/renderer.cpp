@@ -19,8 +19,10 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 namespace mipgloss::ui {
@@ -73,6 +75,8 @@ struct Renderer::Impl {
         GLuint texture = 0;
     };
     std::map<int, GpuLobe> lobes;  // lobe key -> texture
+    std::optional<std::array<int, 4>> outputRect;  // setOutputRect: x, y, width, height
+    bool transparentBackground = false;
     std::unordered_map<const Mesh*, GpuMesh> meshes;
 
     // Targets: multisampled HDR colour + depth, resolved into a single-sample HDR texture.
@@ -625,7 +629,11 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, d.msFbo);
     gl->glViewport(0, 0, width, height);
     const float grey = 0.18f;  // without a background: a mid grey, linear
-    gl->glClearColor(grey, grey, grey, 1.0f);
+    const bool transparent = d.transparentBackground && !scene.display.showBackground;
+    if (transparent)
+        gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    else
+        gl->glClearColor(grey, grey, grey, 1.0f);
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl->glEnable(GL_DEPTH_TEST);
     gl->glDepthFunc(GL_LESS);
@@ -684,14 +692,28 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     tone.bind();
     tone.setUniformValue("uExposure", std::exp2(scene.display.exposureEv));
     tone.setUniformValue("uToneMap", static_cast<int>(scene.display.toneMap));
+    tone.setUniformValue("uAlpha", transparent ? 1 : 0);
+    if (d.outputRect) {
+        gl->glEnable(GL_SCISSOR_TEST);
+        gl->glScissor((*d.outputRect)[0], (*d.outputRect)[1], (*d.outputRect)[2], (*d.outputRect)[3]);
+    }
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, d.resolveTexture);
     gl->glBindVertexArray(d.emptyVao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
+    gl->glDisable(GL_SCISSOR_TEST);
     tone.release();
     ++d.counters.frames;
 }
+
+void Renderer::setOutputRect(int x, int y, int width, int height) {
+    impl_->outputRect = std::array<int, 4>{x, y, std::max(width, 0), std::max(height, 0)};
+}
+
+void Renderer::clearOutputRect() { impl_->outputRect.reset(); }
+
+void Renderer::setTransparentBackground(bool transparent) { impl_->transparentBackground = transparent; }
 
 void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
     Impl& d = *impl_;

@@ -32,7 +32,11 @@ public:
     explicit MeshImporter(SceneDocument* document, QObject* parent = nullptr);
     ~MeshImporter() override;  // cancels a background import: nothing of it is added
 
-    void import(const QStringList& paths);
+    // Where the new objects go: Beside the scene (placement.h), or ReplaceObjects: the scene's
+    // objects are removed in the same undo step and the meshes placed alone (the window's
+    // untouched demo scene); a failed import then removes nothing.
+    enum class Placement { Beside, ReplaceObjects };
+    void import(const QStringList& paths, Placement placement = Placement::Beside);
     // True while a background import runs.
     bool busy() const { return worker_->busy(); }
 
@@ -49,7 +53,7 @@ signals:
     void finished(const QStringList& added, const QStringList& errors);
 
 private:
-    void finish(const std::vector<Loaded>& results);
+    void finish(const std::vector<Loaded>& results, Placement placement);
 
     SceneDocument* document_;
     BackgroundWorker* worker_;

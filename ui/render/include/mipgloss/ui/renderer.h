@@ -108,6 +108,19 @@ public:
     void render(const Scene& scene, const OrbitCamera& camera, int width, int height,
                 unsigned targetFbo);
 
+    // Limits what render() writes into the target to the rectangle (x, y from the bottom left, in
+    // pixels), leaving the rest of the target as it was: a split view draws its right half over
+    // its left this way. The whole picture is still drawn (the rectangle only scissors the final
+    // pass). clearOutputRect() writes the whole target again.
+    void setOutputRect(int x, int y, int width, int height);
+    void clearOutputRect();
+
+    // With the background hidden, what is not an object is transparent: cleared to alpha 0 instead
+    // of a mid grey, the tone pass un-premultiplies the resolved colour before the tone map and
+    // writes the coverage as alpha (an image exported with an alpha channel). Off by default: the
+    // window's view is opaque.
+    void setTransparentBackground(bool transparent);
+
     // The same view's per-pixel directions, exponents and exactness (no multisampling; pixels
     // next to the background or to another lobe are never exact).
     AovImage renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height);
