@@ -10,18 +10,24 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QHBoxLayout>
+#include <QHelpEvent>
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QLineEdit>
 #include <QListView>
 #include <QMenu>
 #include <QMessageBox>
+#include <QPainter>
 #include <QPushButton>
 #include <QScrollBar>
 #include <QSortFilterProxyModel>
+#include <QStyledItemDelegate>
+#include <QTextLayout>
 #include <QToolBar>
+#include <QToolTip>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace mipgloss::ui {
@@ -39,7 +45,122 @@ QString withLibrarySuffix(QString path) {
     return path;
 }
 
+// How the grid draws an entry. Not the style's item drawing: it shows a selected item's icon in
+// QIcon::Selected mode, the picture tinted by the selection colour (an orange material looked
+// olive), and its cells took their size from the first entry's one line of text (names were cut
+// to about 8 characters). Here the thumbnail is drawn as it is; the selection is the highlight
+// behind the cell, which frames the thumbnail and lies under the name; the name takes up to two
+// lines (LibraryDock::nameLines), every cell the same size.
+class LibraryItemDelegate : public QStyledItemDelegate {
+public:
+    using QStyledItemDelegate::QStyledItemDelegate;
+
+    static constexpr int kPadding = 5;     // the highlight's frame around the thumbnail
+    static constexpr int kTextMargin = 3;  // between the name and the cell's sides
+    static constexpr int kNameLines = 2;
+
+    static QSize cellSize(const QFontMetrics& metrics) {
+        const int thumbnail = ThumbnailCache::kThumbnailSize;
+        return {thumbnail + 24, kPadding + thumbnail + kPadding + kNameLines * metrics.lineSpacing() + kPadding};
+    }
+
+    QSize sizeHint(const QStyleOptionViewItem& option, const QModelIndex&) const override {
+        return cellSize(option.fontMetrics);
+    }
+
+    void paint(QPainter* painter, const QStyleOptionViewItem& option, const QModelIndex& index) const override {
+        QStyleOptionViewItem opt = option;
+        initStyleOption(&opt, index);
+        const bool enabled = opt.state & QStyle::State_Enabled;
+        const QPalette::ColorGroup group =
+            !enabled ? QPalette::Disabled : (opt.state & QStyle::State_Active ? QPalette::Normal : QPalette::Inactive);
+        const bool selected = opt.state & QStyle::State_Selected;
+        const QRect cell = opt.rect.adjusted(1, 1, -1, -1);
+
+        painter->save();
+        painter->setRenderHint(QPainter::Antialiasing);
+        if (selected || (opt.state & QStyle::State_MouseOver)) {
+            QColor back = opt.palette.color(group, QPalette::Highlight);
+            if (!selected) back.setAlphaF(0.25f);  // hovered
+            painter->setPen(Qt::NoPen);
+            painter->setBrush(back);
+            painter->drawRoundedRect(cell, 4, 4);
+        }
+        const QRect picture = thumbnailRect(opt.rect);
+        const QPixmap pixmap = index.data(Qt::DecorationRole).value<QPixmap>();
+        if (!pixmap.isNull()) {
+            if (!enabled) painter->setOpacity(0.5);
+            painter->drawPixmap(picture, pixmap);
+            painter->setOpacity(1.0);
+        }
+        if ((opt.state & QStyle::State_HasFocus) && !selected) {
+            QColor focus = opt.palette.color(group, QPalette::Highlight);
+            painter->setPen(QPen(focus, 1.0, Qt::DotLine));
+            painter->setBrush(Qt::NoBrush);
+            painter->drawRoundedRect(QRectF(cell).adjusted(0.5, 0.5, -0.5, -0.5), 4, 4);
+        }
+        painter->setPen(opt.palette.color(group, selected ? QPalette::HighlightedText : QPalette::Text));
+        painter->setFont(opt.font);
+        QRect line = nameRect(opt.rect);
+        line.setHeight(opt.fontMetrics.lineSpacing());
+        for (const QString& text : LibraryDock::nameLines(opt.text, opt.font, line.width())) {
+            painter->drawText(line, Qt::AlignHCenter | Qt::AlignTop | Qt::TextSingleLine, text);
+            line.translate(0, opt.fontMetrics.lineSpacing());
+        }
+        painter->restore();
+    }
+
+    // Renaming in place: the editor over the name.
+    void updateEditorGeometry(QWidget* editor, const QStyleOptionViewItem& option, const QModelIndex&) const override {
+        QRect area = nameRect(option.rect);
+        area.setHeight(std::max(editor->sizeHint().height(), option.fontMetrics.lineSpacing()));
+        editor->setGeometry(area);
+    }
+
+    // The tooltip names the entry whole (the grid may cut it short), above what the model says.
+    bool helpEvent(QHelpEvent* event, QAbstractItemView* view, const QStyleOptionViewItem& option,
+                   const QModelIndex& index) override {
+        if (event->type() != QEvent::ToolTip || !index.isValid())
+            return QStyledItemDelegate::helpEvent(event, view, option, index);
+        QString text = index.data(Qt::DisplayRole).toString();
+        const QString details = index.data(Qt::ToolTipRole).toString();
+        if (!details.isEmpty()) text += QLatin1Char('\n') + details;
+        QToolTip::showText(event->globalPos(), text, view, view->visualRect(index));
+        return true;
+    }
+
+private:
+    static QRect thumbnailRect(const QRect& cell) {
+        const int side = ThumbnailCache::kThumbnailSize;
+        return {cell.left() + (cell.width() - side) / 2, cell.top() + kPadding, side, side};
+    }
+    static QRect nameRect(const QRect& cell) {
+        const int top = thumbnailRect(cell).bottom() + 1 + kPadding;
+        return QRect(QPoint(cell.left() + kTextMargin, top), QPoint(cell.right() - kTextMargin, cell.bottom()));
+    }
+};
+
 }  // namespace
+
+QStringList LibraryDock::nameLines(const QString& name, const QFont& font, int width) {
+    if (name.isEmpty() || width <= 0) return {};
+    QTextLayout layout(name, font);
+    QTextOption wrap;
+    wrap.setWrapMode(QTextOption::WrapAtWordBoundaryOrAnywhere);
+    layout.setTextOption(wrap);
+    QStringList lines;
+    int rest = 0;  // where the text after the first line starts
+    layout.beginLayout();
+    for (QTextLine line = layout.createLine(); line.isValid(); line = layout.createLine()) {
+        line.setLineWidth(width);
+        lines << name.mid(line.textStart(), line.textLength()).trimmed();
+        if (lines.size() == 1) rest = line.textStart() + line.textLength();
+    }
+    layout.endLayout();
+    if (lines.size() <= 2) return lines;
+    const QFontMetrics metrics(font);
+    return {lines.front(), metrics.elidedText(name.mid(rest).trimmed(), Qt::ElideMiddle, width)};
+}
 
 LibraryDock::LibraryDock(LibraryDocument* library, SceneDocument* scene, EnvironmentManager* environments,
                          QWidget* parent)
@@ -70,8 +191,9 @@ LibraryDock::LibraryDock(LibraryDocument* library, SceneDocument* scene, Environ
     list_->setModel(proxy_);
     list_->setViewMode(QListView::IconMode);
     list_->setIconSize(QSize(ThumbnailCache::kThumbnailSize, ThumbnailCache::kThumbnailSize));
-    list_->setGridSize(QSize(ThumbnailCache::kThumbnailSize + 24, ThumbnailCache::kThumbnailSize + 36));
-    list_->setUniformItemSizes(true);
+    list_->setItemDelegate(new LibraryItemDelegate(list_));
+    list_->setGridSize(LibraryItemDelegate::cellSize(list_->fontMetrics()));
+    list_->setUniformItemSizes(true);  // the delegate's cells are all one size
     list_->setResizeMode(QListView::Adjust);
     list_->setMovement(QListView::Static);  // the user's order; entries drag out, not around
     list_->setWordWrap(true);

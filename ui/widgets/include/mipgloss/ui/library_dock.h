@@ -12,6 +12,10 @@
 // two ways on: save the library in memory as another file, or overwrite the unreadable one. Errors
 // and results (a failed save, an import) are also sent as messageShown for the window's banner.
 //
+// The grid draws each entry itself (library_dock.cpp): the thumbnail as it is, also when selected
+// (the selection is a background and frame around it, never a tint over it), and the name below
+// on up to two lines (nameLines); the tooltip names the entry whole above its parameters.
+//
 // Object names for tests: libraryDock, librarySearch, libraryList, libraryProblem,
 // libraryProblemText, librarySaveAsButton, libraryReplaceButton, libraryAddAction,
 // libraryApplyAction, libraryRenameAction, libraryDuplicateAction, libraryDeleteAction,
@@ -20,8 +24,10 @@
 
 #include <QDockWidget>
 #include <QString>
+#include <QStringList>
 
 class QAction;
+class QFont;
 class QLabel;
 class QLineEdit;
 class QListView;
@@ -62,6 +68,11 @@ public:
     int currentRow() const;
     // Makes library row `row` the view's current entry (when the filter shows it).
     void setCurrentRow(int row);
+
+    // A name as the grid shows it in `font`, `width` pixels wide: wrapped at word boundaries (or
+    // anywhere in a word too long for a line) onto at most two lines; past two, the second line
+    // holds the rest cut short in the middle (…), so the name's end still shows.
+    static QStringList nameLines(const QString& name, const QFont& font, int width);
 
 public slots:
     // The actions' work, without dialogs (the tests and the window call these too).
