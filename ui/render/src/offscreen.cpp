@@ -58,6 +58,8 @@ QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
     return d.fbo->toImage(true).convertToFormat(QImage::Format_RGB32);
 }
 
+void OffscreenRenderer::setHighlightedObject(int index) { impl_->renderer.setHighlightedObject(index); }
+
 void OffscreenRenderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
     if (!impl_->ready || !impl_->context.makeCurrent(&impl_->surface)) return;
     impl_->renderer.setLobes(lobes);

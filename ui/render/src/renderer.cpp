@@ -48,7 +48,7 @@ int levelKey(float level) { return static_cast<int>(std::lround(level * 1024.0f)
 
 struct Renderer::Impl {
     QOpenGLFunctions_4_1_Core* gl = nullptr;
-    std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram;
+    std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram, outlineProgram;
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
@@ -77,6 +77,7 @@ struct Renderer::Impl {
     std::map<int, GpuLobe> lobes;  // lobe key -> texture
     std::optional<std::array<int, 4>> outputRect;  // setOutputRect: x, y, width, height
     bool transparentBackground = false;
+    int highlighted = -1;  // setHighlightedObject
     std::unordered_map<const Mesh*, GpuMesh> meshes;
 
     // Targets: multisampled HDR colour + depth, resolved into a single-sample HDR texture.
@@ -333,6 +334,50 @@ struct Renderer::Impl {
             gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, wrap, GL_CLAMP_TO_EDGE);
     }
 
+    // The highlighted object's outline (setHighlightedObject), after everything else so nothing
+    // covers it: its silhouette marked in the stencil, then the object pushed outward along its
+    // normals drawn where the stencil is not marked. Depth is neither tested nor written, so the
+    // whole silhouette shows, also where another object hides it.
+    void drawOutline(const Scene& scene, const glm::mat4& viewProjection, int width, int height) {
+        if (highlighted < 0 || highlighted >= static_cast<int>(scene.objects.size())) return;
+        const SceneObject& object = scene.objects[static_cast<std::size_t>(highlighted)];
+        if (!object.visible || !object.mesh || object.mesh->indices.empty()) return;
+        const GpuMesh& mesh = gpuMesh(object.mesh);
+        QOpenGLShaderProgram& program = *outlineProgram;
+        program.bind();
+        const glm::mat4 model = object.transform.matrix();
+        const glm::mat3 rotation = glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
+        gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        gl->glUniformMatrix4fv(program.uniformLocation("uModel"), 1, GL_FALSE, glm::value_ptr(model));
+        gl->glUniformMatrix3fv(program.uniformLocation("uNormalMatrix"), 1, GL_FALSE, glm::value_ptr(rotation));
+        gl->glUniform2f(program.uniformLocation("uViewportSize"), static_cast<float>(width), static_cast<float>(height));
+        // An orange that reads on sky and ground alike, bright enough to survive the tone map.
+        gl->glUniform3f(program.uniformLocation("uColour"), 4.0f, 1.1f, 0.05f);
+        gl->glDisable(GL_DEPTH_TEST);
+        gl->glDepthMask(GL_FALSE);
+        gl->glEnable(GL_STENCIL_TEST);
+        gl->glBindVertexArray(mesh.vao);
+        // 1: the silhouette, stencil only.
+        gl->glStencilFunc(GL_ALWAYS, 1, 0xFF);
+        gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        gl->glUniform1f(program.uniformLocation("uWidthPixels"), 0.0f);
+        gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        // 2: the band around it.
+        gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        gl->glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
+        gl->glStencilMask(0x00);
+        gl->glUniform1f(program.uniformLocation("uWidthPixels"), kOutlineWidthPixels);
+        gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        counters.drawCalls += 2;
+        gl->glStencilMask(0xFF);
+        gl->glDisable(GL_STENCIL_TEST);
+        gl->glDepthMask(GL_TRUE);
+        gl->glEnable(GL_DEPTH_TEST);
+        gl->glBindVertexArray(0);
+        program.release();
+    }
+
     GpuMesh& gpuMesh(const std::shared_ptr<const Mesh>& mesh) {
         auto it = meshes.find(mesh.get());
         if (it != meshes.end() && !it->second.source.expired()) return it->second;
@@ -411,12 +456,13 @@ struct Renderer::Impl {
         gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA16F, width, height);
         gl->glGenRenderbuffers(1, &msDepth);
         gl->glBindRenderbuffer(GL_RENDERBUFFER, msDepth);
-        gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width,
+        gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width,
                                              height);
         gl->glGenFramebuffers(1, &msFbo);
         gl->glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
         gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msColour);
-        gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msDepth);
+        // Depth and a stencil (the selection outline's mask).
+        gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, msDepth);
 
         gl->glGenTextures(1, &resolveTexture);
         gl->glBindTexture(GL_TEXTURE_2D, resolveTexture);
@@ -500,7 +546,9 @@ bool Renderer::initialize(std::string* error) {
         buildProgram(":/mipgloss/shaders/fullscreen.vert", ":/mipgloss/shaders/background.frag", error);
     impl_->toneProgram = buildProgram(":/mipgloss/shaders/fullscreen.vert", ":/mipgloss/shaders/tonemap.frag", error);
     impl_->aovProgram = buildProgram(":/mipgloss/shaders/object.vert", ":/mipgloss/shaders/aov.frag", error);
-    if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram) {
+    impl_->outlineProgram = buildProgram(":/mipgloss/shaders/outline.vert", ":/mipgloss/shaders/outline.frag", error);
+    if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram ||
+        !impl_->outlineProgram) {
         impl_->gl = nullptr;
         return false;
     }
@@ -557,6 +605,7 @@ void Renderer::destroy() {
     d.backgroundProgram.reset();
     d.toneProgram.reset();
     d.aovProgram.reset();
+    d.outlineProgram.reset();
     d.environment.reset();
     d.gl = nullptr;
 }
@@ -634,7 +683,9 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     else
         gl->glClearColor(grey, grey, grey, 1.0f);
-    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl->glStencilMask(0xFF);
+    gl->glClearStencil(0);
+    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     gl->glEnable(GL_DEPTH_TEST);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
@@ -679,6 +730,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         }
         gl->glBindSampler(0, 0);
     }
+    d.drawOutline(scene, viewProjection, width, height);
 
     // Resolve the multisampled HDR target, then tone-map into the caller's framebuffer.
     gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, d.msFbo);
@@ -714,6 +766,8 @@ void Renderer::setOutputRect(int x, int y, int width, int height) {
 void Renderer::clearOutputRect() { impl_->outputRect.reset(); }
 
 void Renderer::setTransparentBackground(bool transparent) { impl_->transparentBackground = transparent; }
+
+void Renderer::setHighlightedObject(int index) { impl_->highlighted = index; }
 
 void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
     Impl& d = *impl_;

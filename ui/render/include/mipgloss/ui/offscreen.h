@@ -27,6 +27,8 @@ public:
 
     // The lobe cubes later renders draw settled materials from (Renderer::setLobes).
     void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
+    // The object later renders outline (Renderer::setHighlightedObject); -1 by default.
+    void setHighlightedObject(int index);
 
     // The per-pixel account of the same view (Renderer::renderAov).
     AovImage renderAov(const Scene& scene, const OrbitCamera& camera,

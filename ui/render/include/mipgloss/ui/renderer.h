@@ -121,6 +121,12 @@ public:
     // window's view is opaque.
     void setTransparentBackground(bool transparent);
 
+    // Outlines object `index` of the scene render() draws (-1: none): a band kOutlineWidthPixels
+    // wide around its whole silhouette, drawn over whatever hides it, so a selected object is
+    // found even behind another. The window's view sets it; pictures written to files never do.
+    void setHighlightedObject(int index);
+    static constexpr float kOutlineWidthPixels = 2.0f;
+
     // The same view's per-pixel directions, exponents and exactness (no multisampling; pixels
     // next to the background or to another lobe are never exact).
     AovImage renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height);
