@@ -161,7 +161,8 @@ int main(int argc, char** argv) {
     // Measuring or capturing runs unattended: no question about an autosave then.
     const bool unattended = timing || !screenshot.isEmpty();
     if (!unattended) window.offerAutosaveRestore();
-    window.openFiles(parser.positionalArguments());
+    // Meshes given here are the scene (Figure 1 only when nothing is given).
+    window.openFiles(parser.positionalArguments(), /*meshesOpen=*/true);
     if (!unattended) return QApplication::exec();
 
     // Measuring or capturing: wait for a frame drawn with the environment uploaded.

@@ -14,12 +14,17 @@
 #include "mipgloss/ui/scene_file.h"
 #include "mipgloss/ui/scene_list_delegate.h"
 #include "mipgloss/ui/scene_list_model.h"
+#include "mipgloss/ui/view_dialogs.h"
+#include "mipgloss/ui/view_toolbar.h"
 #include "mipgloss/ui/viewport.h"
+#include "mipgloss/io/image_file.h"
+#include "mipgloss/ui/recent_files.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileDialog>
@@ -27,6 +32,7 @@
 #include <QHBoxLayout>
 #include <QImage>
 #include <QLabel>
+#include <QLineEdit>
 #include <QListView>
 #include <QLocale>
 #include <QMenuBar>
@@ -36,8 +42,11 @@
 #include <QProgressBar>
 #include <QScrollArea>
 #include <QScrollBar>
+#include <QScreen>
+#include <QSettings>
 #include <QPushButton>
 #include <QStatusBar>
+#include <QStyle>
 #include <QTimer>
 #include <QToolButton>
 #include <QUndoStack>
@@ -91,6 +100,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), autosave_(std::ma
     createDocks();
     createMenus();
     createStatusBar();
+    createViewToolBar();
     setAcceptDrops(true);
 
     connect(document_, &SceneDocument::environmentChanged, this, &MainWindow::refreshStatus);
@@ -111,7 +121,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), autosave_(std::ma
     markSaved();
     refreshTitle();
     refreshStatus();
-    resize(1280, 800);
+    restoreLayout();
     const QStringList gone = RecentFiles::prune();
     if (!gone.isEmpty())
         showMessage(tr("No longer found, removed from Open Recent: %1").arg(gone.join(QStringLiteral(", "))),
@@ -181,8 +191,12 @@ void MainWindow::createActions() {
         return action;
     };
 
-    newAction_ = make(tr("&New scene (Figure 1)"), "newAction");
-    newAction_->setShortcuts(QKeySequence::New);
+    newEmptyAction_ = make(tr("&New scene"), "newEmptyAction");
+    newEmptyAction_->setShortcuts(QKeySequence::New);
+    newEmptyAction_->setStatusTip(tr("A scene with no objects, under the environment in use"));
+    connect(newEmptyAction_, &QAction::triggered, this, &MainWindow::newEmptyScene);
+    newAction_ = make(tr("New &Figure 1 scene"), "newAction");
+    newAction_->setStatusTip(tr("The paper's Figure 1: four teapots, mirror to diffuse, under the courtyard"));
     connect(newAction_, &QAction::triggered, this, &MainWindow::newScene);
     openAction_ = make(tr("&Open scene…"), "openAction");
     openAction_->setShortcuts(QKeySequence::Open);
@@ -235,9 +249,28 @@ void MainWindow::createActions() {
     removeAction_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
     connect(removeAction_, &QAction::triggered, this, &MainWindow::removeSelected);
 
+    // Window-wide (not only while the view has the focus, which a click in it would take by
+    // selecting or deselecting); a text field keeps its letters (it accepts the shortcut override).
+    frameSelectedAction_ = make(tr("Frame &selected"), "frameSelectedAction");
+    frameSelectedAction_->setShortcut(QKeySequence(Qt::Key_F));
+    frameSelectedAction_->setToolTip(tr("Frame the selected object (all objects when none is selected) (F)"));
+    connect(frameSelectedAction_, &QAction::triggered, this, &MainWindow::frameSelected);
     frameAllAction_ = make(tr("&Frame all"), "frameAllAction");
-    frameAllAction_->setShortcut(QKeySequence(Qt::Key_F));
+    frameAllAction_->setShortcut(QKeySequence(Qt::Key_A));
+    frameAllAction_->setToolTip(tr("Frame every object (A)"));
     connect(frameAllAction_, &QAction::triggered, this, &MainWindow::frameAll);
+    resetViewAction_ = make(tr("&Reset view"), "resetViewAction");
+    resetViewAction_->setShortcut(QKeySequence(Qt::Key_Home));
+    resetViewAction_->setToolTip(tr("The default view angle and field of view, framing every object (Home)"));
+    connect(resetViewAction_, &QAction::triggered, this, &MainWindow::resetView);
+    turntableAction_ = make(tr("&Turntable"), "turntableAction");
+    turntableAction_->setCheckable(true);
+    turntableAction_->setShortcut(QKeySequence(Qt::Key_T));
+    turntableAction_->setToolTip(tr("Turn the objects or the environment continuously (T)"));
+    connect(turntableAction_, &QAction::toggled, viewport_, &Viewport::setTurntableRunning);
+    shortcutsAction_ = make(tr("&Keyboard and mouse shortcuts"), "shortcutsAction");
+    shortcutsAction_->setShortcut(QKeySequence::HelpContents);
+    connect(shortcutsAction_, &QAction::triggered, this, &MainWindow::showShortcuts);
     showCountersAction_ = make(tr("Show &counters overlay"), "showCountersAction");
     showCountersAction_->setCheckable(true);
     connect(showCountersAction_, &QAction::toggled, viewport_, &Viewport::setShowCounters);
@@ -252,18 +285,21 @@ QScrollArea* scrollable(QWidget* panel, QWidget* parent) {
     area->setWidget(panel);
     area->setWidgetResizable(true);
     area->setFrameShape(QFrame::NoFrame);
-    area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-    // As wide as the panel wants, so nothing is cut off sideways.
-    area->setMinimumWidth(panel->minimumSizeHint().width() + area->verticalScrollBar()->sizeHint().width());
+    // Narrowable: a dock narrower than the panel scrolls sideways rather than holding the view
+    // to a fixed width; it opens as wide as the panel wants (createDocks).
+    area->setHorizontalScrollBarPolicy(Qt::ScrollBarAsNeeded);
+    area->setMinimumWidth(160);
     return area;
 }
 }  // namespace
 
 void MainWindow::createDocks() {
+    // One column on the right, as in Blender and Toolbag: the scene list above, the material, its
+    // library and the environment as tabs below, so the view keeps the rest of the window.
     auto* sceneDock = new QDockWidget(tr("Scene"), this);
     sceneDock->setObjectName(QStringLiteral("sceneDock"));
     sceneDock->setWidget(createSceneDock());
-    addDockWidget(Qt::LeftDockWidgetArea, sceneDock);
+    addDockWidget(Qt::RightDockWidgetArea, sceneDock);
 
     auto* materialDock = new QDockWidget(tr("Material"), this);
     materialDock->setObjectName(QStringLiteral("materialDock"));
@@ -277,6 +313,8 @@ void MainWindow::createDocks() {
     connect(environmentPanel_, &EnvironmentPanel::openRequested, this, &MainWindow::openEnvironmentDialog);
     environmentDock->setWidget(scrollable(environmentPanel_, environmentDock));
     addDockWidget(Qt::RightDockWidgetArea, environmentDock);
+    splitDockWidget(sceneDock, materialDock, Qt::Vertical);
+    tabifyDockWidget(materialDock, environmentDock);
 
     // The library: beside the material panel, tabbed, so a material and its library are one click
     // apart. A library that cannot be read is refused (its file left alone) and the dock says so.
@@ -293,8 +331,12 @@ void MainWindow::createDocks() {
                         .arg(library_->lastError()),
                     true);
 
-    // The viewport gets most of the width.
-    resizeDocks({sceneDock, materialDock}, {200, 360}, Qt::Horizontal);
+    // The viewport gets most of the window: the column as wide as the material panel wants.
+    const int column = std::clamp(std::max(materialPanel_->sizeHint().width(), environmentPanel_->sizeHint().width()) +
+                                      QApplication::style()->pixelMetric(QStyle::PM_ScrollBarExtent) + 8,
+                                  260, 440);
+    resizeDocks({materialDock}, {column}, Qt::Horizontal);
+    resizeDocks({sceneDock, materialDock}, {160, 600}, Qt::Vertical);
 }
 
 QWidget* MainWindow::createSceneDock() {
@@ -338,6 +380,7 @@ QWidget* MainWindow::createSceneDock() {
 
 void MainWindow::createMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(newEmptyAction_);
     file->addAction(newAction_);
     file->addAction(openAction_);
     recentMenu_ = file->addMenu(tr("Open &recent"));
@@ -368,16 +411,83 @@ void MainWindow::createMenus() {
     edit->addAction(removeAction_);
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addAction(frameSelectedAction_);
     view->addAction(frameAllAction_);
+    view->addAction(resetViewAction_);
+    view->addSeparator();
+    view->addAction(turntableAction_);
     view->addAction(showCountersAction_);
     view->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly))
         view->addAction(dock->toggleViewAction());
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(shortcutsAction_);
+    QAction* about = help->addAction(tr("&About mipgloss"));
+    about->setObjectName(QStringLiteral("aboutAction"));
+    connect(about, &QAction::triggered, this, [this] {
+        QMessageBox::about(this, tr("About mipgloss"),
+                           tr("<b>mipgloss %1</b><p>Blurry, glossy and diffuse reflections from one "
+                              "cube-map mip chain, after Ashikhmin &amp; Ghosh, <i>Simple Blurry "
+                              "Reflections with Environment Maps</i> (2002).</p>")
+                               .arg(QCoreApplication::applicationVersion()));
+    });
+}
+
+void MainWindow::createViewToolBar() {
+    viewToolBar_ = new ViewToolBar(viewport_, document_, library_,
+                                   {frameSelectedAction_, frameAllAction_, resetViewAction_}, turntableAction_, this);
+    addToolBar(Qt::TopToolBarArea, viewToolBar_);
+    connect(viewToolBar_, &ViewToolBar::chooseComparedEnvironment, this, [this] {
+        const QString path = QFileDialog::getOpenFileName(
+            this, tr("Compare with environment"), lastDirectory_,
+            tr("Environment images (*.exr *.hdr *.png *.jpg *.jpeg *.tif *.tiff *.pfm);;All files (*)"));
+        if (!path.isEmpty()) viewToolBar_->compareEnvironment(path);
+    });
+    // The comparison's environment is read by its own manager: its failures are shown too.
+    connect(viewport_, &Viewport::comparisonChanged, this, [this] {
+        if (EnvironmentManager* compared = viewport_->comparisonEnvironments())
+            connect(compared, &EnvironmentManager::failed, this,
+                    [this](const QString& message) { showMessage(tr("Comparison: %1").arg(message), true); },
+                    Qt::UniqueConnection);
+    });
+}
+
+void MainWindow::restoreLayout() {
+    const std::unique_ptr<QSettings> settings = userSettings();
+    const QByteArray geometry = settings->value(QStringLiteral("window/geometry")).toByteArray();
+    const QByteArray state = settings->value(QStringLiteral("window/state")).toByteArray();
+    if (!geometry.isEmpty() && restoreGeometry(geometry)) {
+        if (!state.isEmpty()) restoreState(state, kLayoutVersion);
+        return;
+    }
+    // First start: most of the screen, maximised where the window manager does that.
+    if (const QScreen* screen = this->screen()) {
+        const QRect available = screen->availableGeometry();
+        resize(std::min(available.width(), 1600), std::min(available.height(), 1000));
+    } else {
+        resize(1280, 800);
+    }
+    setWindowState(windowState() | Qt::WindowMaximized);
+}
+
+void MainWindow::saveLayout() const {
+    const std::unique_ptr<QSettings> settings = userSettings();
+    settings->setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings->setValue(QStringLiteral("window/state"), saveState(kLayoutVersion));
 }
 
 void MainWindow::createStatusBar() {
-    envStatus_ = new QLabel(this);
-    envStatus_->setObjectName(QStringLiteral("envStatusLabel"));
+    // The message on the left takes the room the permanent widgets leave (they get theirs first);
+    // the environment's status is whole when there is room and cut short (…) when not, so it
+    // never sets the window's least width.
+    statusMessage_ = makeElidedLabel(this, QStringLiteral("statusMessage"));
+    statusMessage_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    statusBar()->addWidget(statusMessage_, 1);
+    statusMessageTimer_ = new QTimer(this);
+    statusMessageTimer_->setSingleShot(true);
+    connect(statusMessageTimer_, &QTimer::timeout, this, [this] { setElidedText(statusMessage_, QString()); });
+    envStatus_ = makeElidedLabel(this, QStringLiteral("envStatusLabel"));
     progress_ = new QProgressBar(this);
     progress_->setObjectName(QStringLiteral("envProgress"));
     progress_->setRange(0, 100);
@@ -413,6 +523,12 @@ void MainWindow::createStatusBar() {
         progress_->setFormat(stage + QStringLiteral(" %p%"));
         progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
     });
+    // The library dock's messages are about library files (showMessageOf's rule); the window's
+    // own connection (createDocks) has shown them by the time this one runs.
+    Q_ASSERT(libraryDock_);
+    connect(libraryDock_, &LibraryDock::messageShown, this,
+            [this](const QString&, bool error) { noteOutcome(MessageKind::Library, error); });
+    sendFieldUndoKeysToDocument();
 }
 
 void MainWindow::setDefaultPrompts() {
@@ -497,6 +613,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         return;
     }
     // A clean exit: the work is saved or knowingly dropped.
+    saveLayout();
     autosaveTimer_->stop();
     forgetAutosave();
     event->accept();
@@ -504,14 +621,42 @@ void MainWindow::closeEvent(QCloseEvent* event) {
 
 bool MainWindow::newScene() {
     if (!maybeSave()) return false;
-    document_->resetScene(makeFigure1Scene());
+    showNewScene(makeFigure1Scene());
     sceneFile_.clear();
     markSaved();
     forgetAutosave();
     refreshTitle();
-    viewport_->frameAll();
     showMessage(tr("New scene: Figure 1"), false);
     return true;
+}
+
+bool MainWindow::newEmptyScene() {
+    if (!maybeSave()) return false;
+    Scene scene;
+    scene.environment = document_->scene().environment;
+    scene.display = document_->scene().display;
+    showNewScene(std::move(scene));
+    sceneFile_.clear();
+    markSaved();
+    forgetAutosave();
+    refreshTitle();
+    showMessage(tr("New scene: import meshes (File → Import mesh, or drop them on the window)"), false);
+    return true;
+}
+
+void MainWindow::showNewScene(Scene scene) {
+    const std::optional<OrbitCamera> camera = scene.camera;
+    document_->resetScene(std::move(scene));
+    if (camera)
+        viewport_->setCamera(*camera);
+    else
+        viewport_->resetView();
+}
+
+Scene MainWindow::sceneWithView() const {
+    Scene scene = document_->scene();
+    scene.camera = viewport_->camera();
+    return scene;
 }
 
 bool MainWindow::openScene(const QString& path) { return maybeSave() && loadSceneFile(path); }
@@ -520,22 +665,21 @@ bool MainWindow::loadSceneFile(const QString& path) {
     try {
         SceneFileReport report;
         Scene scene = loadScene(path.toStdString(), &report);
-        document_->resetScene(std::move(scene));
+        showNewScene(std::move(scene));
         matchesFile(path);
-        viewport_->frameAll();
         for (const std::string& w : report.warnings) std::cerr << "mipgloss: " << w << '\n';
         if (report.warnings.empty())
-            showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), false);
+            showMessageOf(MessageKind::Scene, tr("Opened %1").arg(QFileInfo(path).fileName()), false);
         else
-            showMessage(tr("Opened %1 with warnings:\n%2")
-                            .arg(QFileInfo(path).fileName(),
-                                 QString::fromStdString(report.warnings.front())),
-                        false);
+            showMessageOf(MessageKind::Scene,
+                          tr("Opened %1 with warnings:\n%2")
+                              .arg(QFileInfo(path).fileName(), QString::fromStdString(report.warnings.front())),
+                          false);
         return true;
     } catch (const SceneFileError& e) {
-        showMessage(QString::fromStdString(e.what()), true);
+        showMessageOf(MessageKind::Scene, QString::fromStdString(e.what()), true);
     } catch (const std::exception& e) {
-        showMessage(path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
+        showMessageOf(MessageKind::Scene, path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
     }
     return false;
 }
@@ -562,7 +706,7 @@ bool MainWindow::saveAs() {
 
 bool MainWindow::saveScene(const QString& path) {
     try {
-        mipgloss::ui::saveScene(document_->scene(), path.toStdString());
+        mipgloss::ui::saveScene(sceneWithView(), path.toStdString());
     } catch (const SceneFileError& e) {
         showMessage(QString::fromStdString(e.what()), true);
         return false;
@@ -628,7 +772,7 @@ bool MainWindow::offerAutosaveRestore() {
         SceneFileReport report;
         Scene scene = loadScene(newest.file.toStdString(), &report);
         for (const std::string& w : report.warnings) std::cerr << "mipgloss: " << w << '\n';
-        document_->resetScene(std::move(scene));
+        showNewScene(std::move(scene));
     } catch (const SceneFileError& e) {
         // Kept: the user may still rescue it by hand, and the message says where it is.
         showMessage(tr("Could not restore the autosave: %1").arg(QString::fromStdString(e.what())), true);
@@ -657,7 +801,20 @@ void MainWindow::refreshStatus() {
                        .arg(QString::fromLatin1(builderName(s.builder)));
     if (!current) text += tr(" (loading)");
     else if (!current->complete()) text += tr(" (building the chain)");
-    envStatus_->setText(text);
+    setElidedText(envStatus_, text);
+
+    // The environment openEnvironment asked for: loaded (drawn, perhaps before its chain), or the
+    // document no longer asks for it (undone, another scene opened; a failure is
+    // onEnvironmentFailed's). Either way the status bar stops saying it is being opened.
+    if (openingEnvironment_.empty()) return;
+    const QString name = QFileInfo(QString::fromStdString(openingEnvironment_)).fileName();
+    if (current && current->settings.source == openingEnvironment_) {
+        openingEnvironment_.clear();
+        showMessageOf(MessageKind::Environment, tr("Loaded %1").arg(name), false);
+    } else if (document_->scene().environment.source != openingEnvironment_) {
+        openingEnvironment_.clear();
+        if (statusMessage_->toolTip() == tr("Opening environment %1…").arg(name)) showStatusMessage(QString(), 0);
+    }
 }
 
 void MainWindow::showSelectionInList(int index) {
@@ -674,10 +831,11 @@ void MainWindow::showMessage(const QString& message, bool error, bool log) {
     if (error) {
         bannerText_->setText(message);
         banner_->show();
-        statusBar()->showMessage(message.section(QLatin1Char('\n'), 0, 0), 30000);
+        bannerKind_ = MessageKind::Other;  // showMessageOf names the kind
+        showStatusMessage(message, 30000);
         if (log) std::cerr << "mipgloss: " << message.toStdString() << '\n';
     } else {
-        statusBar()->showMessage(message, 8000);
+        showStatusMessage(message, 8000);
     }
     emit messageShown(message, error);
 }
@@ -688,7 +846,7 @@ void MainWindow::showMessage(const QString& message, bool error, bool log) {
 bool MainWindow::openEnvironment(const QString& path) {
     const QFileInfo info(path);
     if (!info.exists()) {
-        showMessage(tr("%1: no such file or folder").arg(path), true);
+        showMessageOf(MessageKind::Environment, tr("%1: no such file or folder").arg(path), true);
         return false;
     }
     lastDirectory_ = info.absolutePath();
@@ -696,13 +854,17 @@ bool MainWindow::openEnvironment(const QString& path) {
     settings.source = info.absoluteFilePath().toStdString();
     settings.layout = EnvLayout::Auto;
     environments_->forgetFailure();  // an explicit open reads the file again, fixed or not
-    document_->setEnvironment(settings);
+    openingEnvironment_ = settings.source;
     showMessage(tr("Opening environment %1…").arg(info.fileName()), false);
+    statusMessageTimer_->stop();  // said until it is loaded or fails (refreshStatus, onEnvironmentFailed)
+    document_->setEnvironment(settings);
+    refreshStatus();  // the file drawn already: loaded at once
     return true;
 }
 
 void MainWindow::onEnvironmentFailed(const QString& message) {
-    showMessage(message, true, /*log=*/false);  // the manager logs its failures
+    openingEnvironment_.clear();
+    showMessageOf(MessageKind::Environment, message, true, /*log=*/false);  // the manager logs its failures
     // Keep drawing what was there, and make the document say so again; the step that asked for
     // the file is withdrawn rather than answered by a step of its own (scene_document.h).
     EnvironmentSettings fallback;  // nothing drawn yet: the embedded default
@@ -712,36 +874,102 @@ void MainWindow::onEnvironmentFailed(const QString& message) {
 
 void MainWindow::importMeshes(const QStringList& paths) { importer_->import(paths); }
 
-void MainWindow::finishImport(const QStringList& added, const QStringList& errors) {
-    progress_->setVisible(importing() || environments_->busy());
-    progress_->setRange(0, 100);
-    if (!added.isEmpty()) viewport_->frameAll();
-    if (!errors.isEmpty())
-        showMessage(errors.join(QLatin1Char('\n')), true);
-    else if (!added.isEmpty())
-        showMessage(tr("Imported %1").arg(added.join(QStringLiteral(", "))), false);
-    emit importFinished(static_cast<int>(added.size()));
-}
-
-bool MainWindow::exportImage(const QString& path) {
-    const QImage image = viewport_->grabFramebuffer();
-    QByteArray format = QFileInfo(path).suffix().toUpper().toLatin1();
-    if (format.isEmpty()) format = "PNG";
-    try {
-        if (image.isNull()) throw FileError(path.toStdString(), "the view could not be grabbed");
-        writeFileAtomically(path.toStdString(),
-                            [&](QIODevice& device) { return image.save(&device, format.constData()); });
-    } catch (const FileError& e) {
-        showMessage(QString::fromStdString(e.what()), true);
-        return false;
-    }
-    lastDirectory_ = QFileInfo(path).absolutePath();
-    showMessage(tr("Exported %1 (%2×%3)").arg(QFileInfo(path).fileName()).arg(image.width()).arg(image.height()),
-                false);
+bool MainWindow::openMeshes(const QStringList& paths, bool askFirst) {
+    if (paths.isEmpty() || (askFirst && !maybeSave())) return false;
+    // The objects go in finishImport, in the import's own undo step, and only if a mesh was read:
+    // a file that fails leaves the scene as it was.
+    openingMeshes_ = true;
+    importer_->import(paths, MeshImporter::Placement::ReplaceObjects);
     return true;
 }
 
+void MainWindow::finishImport(const QStringList& added, const QStringList& errors) {
+    progress_->setVisible(importing() || environments_->busy());
+    progress_->setRange(0, 100);
+    if (openingMeshes_ && !added.isEmpty()) {
+        // openMeshes: the imported objects are a new, untitled scene (the import's undo step
+        // holds the objects they replaced).
+        openingMeshes_ = false;
+        sceneFile_.clear();
+        refreshTitle();
+    }
+    openingMeshes_ = false;
+    if (!added.isEmpty()) viewport_->frameAll();
+    if (!errors.isEmpty())
+        showMessageOf(MessageKind::Meshes, errors.join(QLatin1Char('\n')), true);
+    else if (!added.isEmpty())
+        showMessageOf(MessageKind::Meshes, tr("Imported %1").arg(added.join(QStringLiteral(", "))), false);
+    emit importFinished(static_cast<int>(added.size()));
+}
+
+bool MainWindow::exportImage(const QString& path, QSize size) {
+    const qreal ratio = viewport_->devicePixelRatio();
+    if (size == QSize())  // the view's own pixels
+        size = QSize(static_cast<int>(std::lround(viewport_->width() * ratio)),
+                     static_cast<int>(std::lround(viewport_->height() * ratio)));
+    QByteArray format = QFileInfo(path).suffix().toUpper().toLatin1();
+    if (format.isEmpty()) format = "PNG";
+    const bool exr = format == "EXR";
+    try {
+        // Before anything is drawn: a folder that cannot take the file.
+        const QFileInfo folder(QFileInfo(path).absolutePath());
+        if (!folder.isDir()) throw FileError(path.toStdString(), "its folder does not exist");
+        if (!folder.isWritable()) throw FileError(path.toStdString(), "its folder is not writable");
+        QString why;
+        std::vector<float> hdr;
+        const QImage image = viewport_->renderImage(size.width(), size.height(), /*transparent=*/true,
+                                                    exr ? &hdr : nullptr, &why);
+        if (image.isNull()) throw FileError(path.toStdString(), why.toStdString());
+        if (exr) {
+            writeFloatChannels(path.toStdString(), image.width(), image.height(), {"R", "G", "B", "A"}, hdr);
+        } else {
+            // Straight alpha (the tone pass un-premultiplies); opaque where the background shows.
+            const QImage out = document_->scene().display.showBackground
+                                   ? image.convertToFormat(QImage::Format_RGB888)
+                                   : image.convertToFormat(QImage::Format_RGBA8888);
+            writeFileAtomically(path.toStdString(),
+                                [&](QIODevice& device) { return out.save(&device, format.constData()); });
+        }
+        lastDirectory_ = QFileInfo(path).absolutePath();
+        showMessage(tr("Exported %1 (%2×%3%4)")
+                        .arg(QFileInfo(path).fileName())
+                        .arg(image.width())
+                        .arg(image.height())
+                        .arg(exr ? tr(", linear float") : QString()),
+                    false);
+        return true;
+    } catch (const FileError& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+    } catch (const std::exception& e) {
+        showMessage(path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
+    }
+    return false;
+}
+
 void MainWindow::frameAll() { viewport_->frameAll(); }
+
+void MainWindow::frameSelected() { viewport_->frameSelected(); }
+
+void MainWindow::resetView() { viewport_->resetView(); }
+
+void MainWindow::showShortcuts() {
+    QList<QAction*> actions;
+    for (QAction* a : findChildren<QAction*>()) actions.append(a);
+    // In menu order: the menus' own lists, then whatever else has keys.
+    QList<QAction*> ordered;
+    for (QAction* menu : menuBar()->actions())
+        if (menu->menu())
+            for (QAction* a : menu->menu()->actions()) {
+                if (a->menu())
+                    for (QAction* sub : a->menu()->actions()) ordered.append(sub);
+                else
+                    ordered.append(a);
+            }
+    for (QAction* a : actions)
+        if (!ordered.contains(a)) ordered.append(a);
+    ShortcutsDialog dialog(ordered, this);
+    dialog.exec();
+}
 
 void MainWindow::removeSelected() { document_->removeObject(document_->selected()); }
 
@@ -755,9 +983,20 @@ void MainWindow::duplicateSelected() {
 void MainWindow::openSceneDialog() {
     // Asked before the file dialog, as every other application does.
     if (!maybeSave()) return;
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), lastDirectory_,
-                                                      tr("mipgloss scenes (*.mipgloss *.json)"));
-    if (!path.isEmpty()) loadSceneFile(path);
+    QStringList meshPatterns;
+    for (const char* ext : meshExtensions()) meshPatterns << QStringLiteral("*%1").arg(QLatin1String(ext));
+    const QStringList paths = QFileDialog::getOpenFileNames(
+        this, tr("Open a scene, or meshes as a new scene"), lastDirectory_,
+        tr("Scenes and meshes (*.mipgloss *.json %1);;mipgloss scenes (*.mipgloss *.json);;Meshes (%1)")
+            .arg(meshPatterns.join(QLatin1Char(' '))));
+    if (paths.isEmpty()) return;
+    QStringList meshes;
+    for (const QString& path : paths)
+        if (classify(path) == DropKind::Mesh) meshes << path;
+    if (meshes.isEmpty())
+        loadSceneFile(paths.front());
+    else
+        openMeshes(meshes, /*askFirst=*/false);  // asked above, before the file dialog
 }
 
 void MainWindow::openEnvironmentDialog() {
@@ -784,10 +1023,18 @@ void MainWindow::importMeshDialog() {
 }
 
 void MainWindow::exportImageDialog() {
+    const qreal ratio = viewport_->devicePixelRatio();
+    const QSize viewSize(static_cast<int>(std::lround(viewport_->width() * ratio)),
+                         static_cast<int>(std::lround(viewport_->height() * ratio)));
+    ExportImageDialog options(viewSize, viewport_->maxRenderSize(), this);
+    if (options.exec() != QDialog::Accepted) return;
+    const bool exr = options.format() == ExportImageDialog::Format::Exr;
+    const QString suffix = exr ? QStringLiteral("exr") : QStringLiteral("png");
     const QString path = withSuffix(
-        QFileDialog::getSaveFileName(this, tr("Export image"), lastDirectory_, tr("PNG images (*.png)")),
-        QStringLiteral("png"));
-    if (!path.isEmpty()) exportImage(path);
+        QFileDialog::getSaveFileName(this, tr("Export image"), lastDirectory_,
+                                     exr ? tr("OpenEXR images (*.exr)") : tr("PNG images (*.png)")),
+        suffix);
+    if (!path.isEmpty()) exportImage(path, options.imageSize());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -810,7 +1057,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
     openFiles(paths);
 }
 
-void MainWindow::openFiles(const QStringList& paths) {
+void MainWindow::openFiles(const QStringList& paths, bool meshesOpen) {
     QString scene, environment;
     QStringList libraries, meshes, unknown;
     for (const QString& path : paths) {
@@ -824,13 +1071,150 @@ void MainWindow::openFiles(const QStringList& paths) {
     }
     // A scene replaces everything, so it goes first; meshes and an environment then add to it.
     if (!scene.isEmpty()) openScene(scene);
-    if (!meshes.isEmpty()) importMeshes(meshes);
+    if (!meshes.isEmpty()) {
+        if (meshesOpen && scene.isEmpty())
+            openMeshes(meshes);
+        else
+            importMeshes(meshes);
+    }
     if (!environment.isEmpty()) openEnvironment(environment);
     for (const QString& library : libraries) libraryDock_->importLibrary(library);
     if (!unknown.isEmpty())
         showMessage(tr("Not a scene, mesh or environment (or not found): %1")
                         .arg(unknown.join(QStringLiteral(", "))),
                     true);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The banner and the status bar
+
+void MainWindow::showMessageOf(MessageKind kind, const QString& message, bool error, bool log) {
+    showMessage(message, error, log);
+    noteOutcome(kind, error);
+}
+
+void MainWindow::noteOutcome(MessageKind kind, bool error) {
+    if (error)
+        bannerKind_ = kind;
+    else if (kind != MessageKind::Other && bannerKind_ == kind)
+        banner_->hide();  // what failed has been done since (main_window.h: MessageKind)
+}
+
+void MainWindow::showStatusMessage(const QString& message, int timeoutMs) {
+    // One line: an error's first (the banner has the rest), a message's lines joined.
+    const QString line = message.contains(QLatin1Char('\n')) && lastMessageIsError_
+                             ? message.section(QLatin1Char('\n'), 0, 0)
+                             : QString(message).replace(QLatin1Char('\n'), QLatin1Char(' '));
+    setElidedText(statusMessage_, line);
+    statusMessage_->setToolTip(message);
+    if (timeoutMs > 0 && !message.isEmpty())
+        statusMessageTimer_->start(timeoutMs);
+    else
+        statusMessageTimer_->stop();
+}
+
+namespace {
+
+// QLabel cuts a long text off at its edge (or, in a layout, makes its least width the whole
+// text's). This one shows its text cut short (…) to the width it has, keeps the whole text in its
+// tooltip, asks for the whole text's width and gets by with none.
+class ElidedLabel : public QLabel {
+public:
+    using QLabel::QLabel;
+
+    void setWholeText(const QString& text) {
+        whole_ = text;
+        setToolTip(text);
+        updateGeometry();
+        elide();
+    }
+
+    QSize sizeHint() const override {
+        const QMargins m = contentsMargins();
+        return {fontMetrics().horizontalAdvance(whole_) + m.left() + m.right() + 2 * margin(),
+                QLabel::sizeHint().height()};
+    }
+    QSize minimumSizeHint() const override { return {0, QLabel::minimumSizeHint().height()}; }
+
+protected:
+    void resizeEvent(QResizeEvent* event) override {
+        QLabel::resizeEvent(event);
+        elide();
+    }
+
+private:
+    void elide() {
+        // elidedText cuts some texts that fit their horizontalAdvance (measured here with a glyph
+        // from a fallback font, "²"): given exactly its sizeHint, the label shows the whole text.
+        const int room = contentsRect().width() - 2 * margin();
+        const QFontMetrics metrics = fontMetrics();
+        setText(metrics.horizontalAdvance(whole_) <= room ? whole_ : metrics.elidedText(whole_, Qt::ElideRight, room));
+    }
+
+    QString whole_;
+};
+
+// The window's Undo and Redo keys in the panels' fields. A focused line edit or spin box takes
+// Ctrl+Z and Ctrl+Shift+Z for its own text (it accepts the ShortcutOverride), so Edit → Undo never
+// fired while one had the focus. In the Material and Environment panels a field's text history is
+// only values the document already has (and undoes), so there the keys are the document's: the
+// override is refused and the window's action fires. Typing not yet entered is undone as text
+// first, as a user expects of a field being typed in. Fields elsewhere keep their text undo: the
+// library's search text is in no document, and its Ctrl+Z should bring back what was typed.
+class FieldUndoKeys : public QObject {
+public:
+    FieldUndoKeys(std::function<bool(const QWidget*)> inPanels, QObject* parent)
+        : QObject(parent), inPanels_(std::move(inPanels)) {}
+
+    bool eventFilter(QObject* watched, QEvent* event) override {
+        if (event->type() != QEvent::ShortcutOverride) return false;
+        const auto* key = static_cast<QKeyEvent*>(event);
+        if (!key->matches(QKeySequence::Undo) && !key->matches(QKeySequence::Redo)) return false;
+        const auto* field = qobject_cast<QWidget*>(watched);
+        if (!field || !(qobject_cast<const QAbstractSpinBox*>(field) || qobject_cast<const QLineEdit*>(field)) ||
+            !inPanels_(field) || beingTyped(field))
+            return false;
+        event->ignore();  // not the field's: the shortcut goes to the window's action
+        return true;
+    }
+
+private:
+    // True while a field shows text it has not handed on: a spin box whose text is not its
+    // value's, a line edit edited since it was last set.
+    static bool beingTyped(const QWidget* field) {
+        if (const auto* spin = qobject_cast<const QDoubleSpinBox*>(field)) {
+            const bool special = !spin->specialValueText().isEmpty() && spin->value() == spin->minimum();
+            const QString shown =
+                special ? spin->specialValueText() : spin->prefix() + spin->textFromValue(spin->value()) + spin->suffix();
+            return spin->text() != shown;
+        }
+        if (const auto* edit = qobject_cast<const QLineEdit*>(field)) return edit->isModified();
+        return false;
+    }
+
+    std::function<bool(const QWidget*)> inPanels_;
+};
+
+}  // namespace
+
+QLabel* MainWindow::makeElidedLabel(QWidget* parent, const QString& objectName) {
+    auto* label = new ElidedLabel(parent);
+    label->setObjectName(objectName);
+    label->setTextFormat(Qt::PlainText);
+    return label;
+}
+
+void MainWindow::setElidedText(QLabel* label, const QString& text) { static_cast<ElidedLabel*>(label)->setWholeText(text); }
+
+void MainWindow::sendFieldUndoKeysToDocument() {
+    // On the application: the panels' fields come and go (a layered material's editor), and the
+    // override goes to whichever has the focus.
+    qApp->installEventFilter(new FieldUndoKeys(
+        [this](const QWidget* field) {
+            return (materialPanel_ && materialPanel_->isAncestorOf(field)) ||
+                   (environmentPanel_ && environmentPanel_->isAncestorOf(field));
+        },
+        this));
 }
 
 }  // namespace mipgloss::ui

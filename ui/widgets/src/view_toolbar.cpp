@@ -102,6 +102,7 @@ ViewToolBar::ViewToolBar(Viewport* viewport, SceneDocument* document, LibraryDoc
     compareMaterial_->setSizeAdjustPolicy(QComboBox::AdjustToContents);
     compareChoice_->addWidget(compareMaterial_);
     compareChoice_->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Fixed);
+    compareChoice_->setMaximumWidth(240);  // a choice, not a stretch across the toolbar
     addWidget(compareChoice_);
     fillMaterials();
 

@@ -48,6 +48,7 @@ Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QW
     });
     connect(document_, &SceneDocument::changed, this, &Viewport::syncComparison);
     connect(document_, &SceneDocument::selectionChanged, this, &Viewport::syncComparison);
+    connect(document_, &SceneDocument::selectionChanged, this, qOverload<>(&QWidget::update));  // the outline
     turntableTimer_ = new QTimer(this);
     turntableTimer_->setInterval(kTurntableIntervalMs);
     connect(turntableTimer_, &QTimer::timeout, this, &Viewport::advanceTurntable);
@@ -105,12 +106,14 @@ bool Viewport::comparing() const {
 
 int Viewport::dividerX() const { return static_cast<int>(std::lround(divider_ * static_cast<float>(width()))); }
 
-void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool transparent) {
+void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool transparent, bool outline) {
     const Scene shown = shownScene(interactive);
     const OrbitCamera camera = shownView().camera;
+    const int highlighted = outline ? document_->selected() : -1;
     renderer_->setEnvironment(environments_->current());
     renderer_->setLobes(environments_->lobes());
     renderer_->setTransparentBackground(transparent);
+    renderer_->setHighlightedObject(highlighted);
     renderer_->render(shown, camera, w, h, fbo);
     if (!comparing() || !compareEnvironments_->current()) return;
     if (!compareRenderer_) {
@@ -124,6 +127,7 @@ void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool trans
     compareRenderer_->setEnvironment(compareEnvironments_->current());
     compareRenderer_->setLobes(compareEnvironments_->lobes());
     compareRenderer_->setTransparentBackground(transparent);
+    compareRenderer_->setHighlightedObject(highlighted);
     const int split = static_cast<int>(std::lround(divider_ * static_cast<float>(w)));
     compareRenderer_->setOutputRect(split, 0, w - split, h);
     compareRenderer_->render(comparedScene(shown), camera, w, h, fbo);
@@ -137,7 +141,7 @@ void Viewport::paintGL() {
     const int w = static_cast<int>(std::lround(width() * ratio));
     const int h = static_cast<int>(std::lround(height() * ratio));
     const bool interactive = (dragButton_ != Qt::NoButton || turntableRunning()) && document_->scene().display.samples > 1;
-    drawInto(defaultFramebufferObject(), w, h, interactive, false);
+    drawInto(defaultFramebufferObject(), w, h, interactive, false, /*outline=*/true);
     if (!showCounters_ && !comparing()) {
         emit frameDrawn(renderer_->counters().frames);
         return;
@@ -198,7 +202,9 @@ QImage Viewport::renderImage(int w, int h, bool transparent, std::vector<float>*
     };
     if (!renderer_->isInitialized()) return fail(tr("OpenGL did not start: %1").arg(glError_));
     if (w < 1 || h < 1) return fail(tr("%1×%2 has no pixels").arg(w).arg(h));
+    makeCurrent();  // the limits are the context's
     const RenderSizeLimits limits = renderer_->maxRenderSize();
+    doneCurrent();
     if (w > limits.maxWidth)
         return fail(tr("a width of %1 px is beyond this OpenGL's %2 of %3 px").arg(w).arg(QLatin1String(limits.widthLimit)).arg(limits.maxWidth));
     if (h > limits.maxHeight)
@@ -211,7 +217,7 @@ QImage Viewport::renderImage(int w, int h, bool transparent, std::vector<float>*
             doneCurrent();
             return fail(tr("OpenGL could not make a %1×%2 picture").arg(w).arg(h));
         }
-        drawInto(fbo.handle(), w, h, false, transparent);
+        drawInto(fbo.handle(), w, h, false, transparent, /*outline=*/false);
         image = fbo.toImage(/*flipped=*/true);
         if (hdr) {
             // The linear picture: the left render's, with the right part from the comparison's.

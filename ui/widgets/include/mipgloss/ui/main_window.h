@@ -36,6 +36,7 @@
 #include "mipgloss/ui/recent_files.h"
 
 #include <QMainWindow>
+#include <QSize>
 #include <QString>
 #include <QStringList>
 
@@ -64,6 +65,7 @@ class EnvironmentPanel;
 class Viewport;
 class MaterialPanel;
 class SceneListModel;
+class ViewToolBar;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -74,6 +76,8 @@ public:
     static constexpr std::int64_t kBackgroundImportBytes = MeshImporter::kBackgroundImportBytes;
     static constexpr float kImportedLambda = MeshImporter::kImportedLambda;
     static constexpr int kDefaultAutosaveIntervalMs = 60 * 1000;
+    // saveState's version (restoreLayout): a layout saved by a build with other docks is ignored.
+    static constexpr int kLayoutVersion = 2;
 
     SceneDocument* document() const { return document_; }
     // The user's material library (library_document.h), opened from defaultLibraryPath(), and its
@@ -85,6 +89,7 @@ public:
     MaterialPanel* materialPanel() const { return materialPanel_; }
     EnvironmentPanel* environmentPanel() const { return environmentPanel_; }
     QListView* sceneList() const { return sceneList_; }
+    ViewToolBar* viewToolBar() const { return viewToolBar_; }
     MeshImporter* importer() const { return importer_; }
 
     // The last message shown (error or information) and whether it was an error.
@@ -117,6 +122,9 @@ public slots:
     // New (Figure 1), Open, Save, Save As and opening a recent file. New and Open ask first when
     // the scene is modified (false: cancelled, or the file could not be read).
     bool newScene();
+    // A scene with no objects, under the environment and display settings in use (an artist's
+    // HDRI stays loaded). File → New (Ctrl+N); newScene() is File → New Figure 1 scene.
+    bool newEmptyScene();
     bool openScene(const QString& path);
     bool openRecentFile(const QString& path);  // a file gone from disk leaves Open Recent
     bool save();
@@ -134,12 +142,29 @@ public slots:
     // directory); the EnvironmentManager imports it. False (with a message) if it does not exist;
     // a file that exists but cannot be read fails later through EnvironmentManager::failed.
     bool openEnvironment(const QString& path);
+    // Meshes added beside the scene (File → Import mesh, drops).
     void importMeshes(const QStringList& paths);
-    bool exportImage(const QString& path);
+    // Meshes opened as the scene (File → Open, the command line): asks first when the scene is
+    // modified, then, once a mesh is read, the scene's objects are replaced by them, framed, under
+    // the environment in use, as a new untitled scene; one undo step brings the old objects back.
+    // False when cancelled. A file that cannot be read leaves the scene as it was. `askFirst`
+    // false: the caller has asked already.
+    bool openMeshes(const QStringList& paths, bool askFirst = true);
+    // Writes what the view shows at `size` (empty: the view's own size), through the renderer, not
+    // the window: a .exr file holds the linear, scene-referred picture (float RGBA, before exposure
+    // and tone mapping), other formats the tone-mapped one; both carry the objects' coverage as
+    // alpha when the background is hidden. A size beyond OpenGL's limits, an unwritable folder or a
+    // failed render: false with a message naming the file and the problem; nothing is written.
+    bool exportImage(const QString& path, QSize size = QSize());
     // What dropping files does, also for command-line arguments: a .json scene opens (first),
-    // mesh files import, an image or a folder becomes the environment (the last one given).
-    void openFiles(const QStringList& paths);
+    // mesh files import (added beside the scene; with `meshesOpen` they are opened as the scene
+    // instead, as the command line does: openMeshes), an image or a folder becomes the environment
+    // (the last one given).
+    void openFiles(const QStringList& paths, bool meshesOpen = false);
     void frameAll();
+    void frameSelected();  // all when nothing is selected
+    void resetView();      // the default view angle and field of view, framing all
+    void showShortcuts();  // Help → Keyboard and mouse shortcuts
     void removeSelected();
     void duplicateSelected();
 
@@ -159,7 +184,17 @@ private:
     void createDocks();
     void createMenus();
     void createStatusBar();
+    void createViewToolBar();
     QWidget* createSceneDock();
+    // The window's geometry and its docks' layout, kept in the user's settings (closeEvent) and
+    // restored when the window is made; with none saved the window opens maximised.
+    void restoreLayout();
+    void saveLayout() const;
+    // The document's scene with the view's camera: what Save writes.
+    Scene sceneWithView() const;
+    // The document's scene is `scene`, fresh (no undo history): the view shows its saved camera,
+    // or frames it.
+    void showNewScene(Scene scene);
 
     // Files.
     bool maybeSave();
@@ -220,7 +255,15 @@ private:
     QAction* duplicateAction_ = nullptr;
     QAction* removeAction_ = nullptr;
     QAction* frameAllAction_ = nullptr;
+    QAction* frameSelectedAction_ = nullptr;
+    QAction* resetViewAction_ = nullptr;
+    QAction* turntableAction_ = nullptr;
     QAction* showCountersAction_ = nullptr;
+    QAction* newEmptyAction_ = nullptr;
+    QAction* shortcutsAction_ = nullptr;
+    ViewToolBar* viewToolBar_ = nullptr;
+    // openMeshes is under way: its import's objects make a new, untitled scene.
+    bool openingMeshes_ = false;
     QMenu* recentMenu_ = nullptr;
 
     Prompts prompts_;
@@ -235,6 +278,33 @@ private:
     QTimer* autosaveTimer_ = nullptr;
     std::optional<Scene> lastAutosaved_;
     QString lastAutosaveError_;
+
+    // The banner and the status bar (the end of main_window.cpp).
+    // What an error in the banner is about. The rule: a later success of the same kind of action
+    // (a scene opened, an environment loaded, meshes imported, a library file imported or
+    // exported) takes the banner down, as what failed has been done since or the user has moved
+    // on to another file of that kind; a success of another kind says nothing about what failed
+    // and leaves it. Other errors (saving, exporting an image, OpenGL) stay until dismissed.
+    enum class MessageKind { Other, Scene, Environment, Meshes, Library };
+    void showMessageOf(MessageKind kind, const QString& message, bool error, bool log = true);
+    // The rule, for a message of `kind` just shown.
+    void noteOutcome(MessageKind kind, bool error);
+    // The status bar's message, one line cut short (…) to the room beside its permanent widgets,
+    // whole in its tooltip; gone after `timeoutMs` (0: until the next message).
+    void showStatusMessage(const QString& message, int timeoutMs);
+    // A one-line label that shows its text cut short (…) to its width, whole in its tooltip, and
+    // asks for no width it cannot do without (the status bar's labels).
+    static QLabel* makeElidedLabel(QWidget* parent, const QString& objectName);
+    static void setElidedText(QLabel* label, const QString& text);
+    // Undo and Redo keys in the Material and Environment panels' fields undo the document.
+    void sendFieldUndoKeysToDocument();
+
+    MessageKind bannerKind_ = MessageKind::Other;
+    // The file or folder openEnvironment asked for, until it is loaded or fails: the status bar
+    // says "Opening environment …" until then, and no longer.
+    std::string openingEnvironment_;
+    QLabel* statusMessage_ = nullptr;
+    QTimer* statusMessageTimer_ = nullptr;
 };
 
 }  // namespace mipgloss::ui

@@ -134,8 +134,8 @@ private:
     // The right half's scene: the shown scene with the comparison's change.
     Scene comparedScene(const Scene& shown) const;
     void syncComparison();  // the shadow document follows the scene
-    // Draws the whole picture (both halves) into `fbo`.
-    void drawInto(unsigned fbo, int width, int height, bool interactive, bool transparent);
+    // Draws the whole picture (both halves) into `fbo`; `outline`: the selection outlined.
+    void drawInto(unsigned fbo, int width, int height, bool interactive, bool transparent, bool outline);
     bool comparing() const;
     int dividerX() const;
     void advanceTurntable();
