@@ -116,6 +116,17 @@ cat > $sc/v4-full.mipgloss <<'J'
               "material": "gold"},
              {"name": "pot", "mesh": "builtin:sphere", "material": "gold"}]}
 J
+cat > $sc/v6-camera.mipgloss <<'J'
+{"format": "mipgloss-scene", "version": 6,
+ "environment": {"source": "builtin:courtyard", "faceSize": 32, "builder": "box"},
+ "display": {"environmentRotationDegrees": -45},
+ "materials": [{"name": "paint", "lambda": 0, "layers": {"baseColor": [0.6, 0.05, 0.02], "roughness": 0.45, "coat": 1}},
+               {"name": "gold", "lambda": 3, "tint": [1, 0.8, 0.3]}],
+ "objects": [{"name": "ball", "mesh": "builtin:sphere", "material": "paint",
+              "transform": {"translation": [0.5, 0, -1], "rotationDegrees": [0, 30, 0], "scale": 2}},
+             {"name": "pot", "mesh": "builtin:teapot", "material": "gold"}],
+ "camera": {"target": [0.25, 0.5, -0.5], "distance": 6.5, "yawDegrees": -30, "pitchDegrees": 25, "fovYDegrees": 40}}
+J
 cat > $sc/v2-object-materials.json <<'J'
 {"format": "mipgloss-scene", "version": 2, "environment": {"source": "builtin:courtyard"},
  "objects": [{"name": "a", "mesh": "builtin:sphere", "material": {"lambda": 4, "phongExponent": 191, "tint": [0.5, 0.5, 0.5]}},
