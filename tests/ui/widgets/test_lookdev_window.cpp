@@ -20,6 +20,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QListView>
 #include <QSignalSpy>
@@ -296,6 +297,10 @@ TEST(LookDevWindow, CtrlDragTurnsTheEnvironmentInOneUndoStep) {
                 1e-3f);
     EXPECT_EQ(w->document()->undoStack()->count(), steps + 1);
     EXPECT_EQ(view->camera(), camera) << "the camera moved with the environment";
+    // Its angle, in degrees, in the Environment panel.
+    auto* degrees = w->findChild<QDoubleSpinBox*>(QStringLiteral("envRotationSpin"));
+    ASSERT_TRUE(degrees);
+    EXPECT_NEAR(degrees->value(), 50.0 * static_cast<double>(Viewport::kEnvironmentDegreesPerPixel), 0.05);
     w->document()->undoStack()->undo();
     EXPECT_EQ(w->document()->scene().display.environmentRotationDegrees, 0.0f);
 }

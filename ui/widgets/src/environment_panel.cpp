@@ -87,16 +87,36 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     rotation_ = new QSlider(Qt::Horizontal, this);
     rotation_->setObjectName(QStringLiteral("envRotationSlider"));
     rotation_->setRange(-180, 180);
-    rotation_->setToolTip(tr("Turns the environment about +Y (degrees); never rebuilds"));
+    rotation_->setToolTip(tr("Turns the environment about the vertical axis; never rebuilds. In the "
+                             "view: Ctrl + left drag, or Shift + right drag"));
     sessions_->track(rotation_);
     connect(rotation_, &QSlider::valueChanged, this, [this](int degrees) {
         editDisplay([degrees](DisplaySettings& d) { d.environmentRotationDegrees = static_cast<float>(degrees); },
                     rotation_);
     });
-    form->addRow(tr("Rotation"), rotation_);
+    rotationDegrees_ = new QDoubleSpinBox(this);
+    rotationDegrees_->setObjectName(QStringLiteral("envRotationSpin"));
+    rotationDegrees_->setRange(-180.0, 180.0);
+    rotationDegrees_->setDecimals(1);
+    rotationDegrees_->setWrapping(true);
+    rotationDegrees_->setSuffix(QStringLiteral("°"));
+    rotationDegrees_->setKeyboardTracking(false);
+    rotationDegrees_->setToolTip(rotation_->toolTip());
+    sessions_->track(rotationDegrees_);
+    connect(rotationDegrees_, &QDoubleSpinBox::valueChanged, this, [this](double degrees) {
+        editDisplay([degrees](DisplaySettings& d) { d.environmentRotationDegrees = static_cast<float>(degrees); },
+                    rotationDegrees_);
+    });
+    auto* rotationRow = new QHBoxLayout;
+    rotationRow->addWidget(rotation_, 1);
+    rotationRow->addWidget(rotationDegrees_);
+    form->addRow(tr("Rotation"), rotationRow);
 
     showBackground_ = new QCheckBox(tr("Show"), this);
     showBackground_->setObjectName(QStringLiteral("showBackgroundCheck"));
+    showBackground_->setToolTip(tr("Show the environment behind the objects (sharp, or blurred at its "
+                                   "own λ). Hidden, it still lights the scene, and an exported PNG is "
+                                   "transparent around the objects."));
     connect(showBackground_, &QCheckBox::toggled, this,
             [this](bool on) { editDisplay([on](DisplaySettings& d) { d.showBackground = on; }); });
     backgroundBlur_ = new QDoubleSpinBox(this);
@@ -178,7 +198,8 @@ void EnvironmentPanel::refresh() {
     source_->setToolTip(QString::fromStdString(s.source));
 
     const QSignalBlocker b1(builder_), b2(faceSize_), b3(handedness_), b4(rotation_),
-        b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_);
+        b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_),
+        b10(rotationDegrees_);
     builder_->setCurrentText(QString::fromLatin1(builderName(s.builder)));
     int sizeIndex = faceSize_->findData(s.faceSize);
     if (sizeIndex < 0) {  // a size from a scene file or the command line
@@ -188,6 +209,7 @@ void EnvironmentPanel::refresh() {
     faceSize_->setCurrentIndex(sizeIndex);
     handedness_->setCurrentIndex(handedness_->findData(static_cast<int>(s.handedness)));
     rotation_->setValue(static_cast<int>(std::lround(d.environmentRotationDegrees)));
+    rotationDegrees_->setValue(static_cast<double>(d.environmentRotationDegrees));
     showBackground_->setChecked(d.showBackground);
     backgroundBlur_->setValue(d.backgroundLambda);
     backgroundBlur_->setEnabled(d.showBackground);

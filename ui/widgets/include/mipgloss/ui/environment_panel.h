@@ -57,6 +57,7 @@ private:
     QComboBox* faceSize_ = nullptr;
     QComboBox* handedness_ = nullptr;
     QSlider* rotation_ = nullptr;
+    QDoubleSpinBox* rotationDegrees_ = nullptr;  // the same angle, in degrees
     QCheckBox* showBackground_ = nullptr;
     QDoubleSpinBox* backgroundBlur_ = nullptr;
     QDoubleSpinBox* exposure_ = nullptr;
