@@ -57,6 +57,12 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     builder_ = new QComboBox(this);
     builder_->setObjectName(QStringLiteral("builderCombo"));
     for (const Builder b : kAllBuilders) builder_->addItem(QString::fromLatin1(builderName(b)));
+    builder_->setToolTip(tr("How the environment's blurred levels are made, once per environment "
+                            "(docs/builders.md): phong, the default, holds an exact Phong lobe at every "
+                            "level, filtered across the cube's faces; box is the paper's 2×2 average "
+                            "per face (fast, blocky, lobes that differ by face); paper is the paper's "
+                            "own construction with borders; reference is the slow exact filter. "
+                            "View → Compare shows two side by side."));
     connect(builder_, &QComboBox::currentTextChanged, this, [this](const QString& name) {
         Builder builder;
         if (parseBuilder(name.toStdString(), builder))
@@ -71,6 +77,9 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
         const int size = faceSize_->currentData().toInt();
         editEnvironment([size](EnvironmentSettings& s) { s.faceSize = size; });
     });
+    faceSize_->setToolTip(tr("The cube's face size in texels: larger keeps more detail for mirrors and "
+                             "sharp gloss, and costs four times the memory and build time per step. "
+                             "A material's λ means the same blur at any size."));
     form->addRow(tr("Face size"), faceSize_);
 
     handedness_ = new QComboBox(this);
@@ -147,6 +156,9 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     exposure_->setDecimals(1);
     exposure_->setSuffix(QStringLiteral(" EV"));
     exposure_->setKeyboardTracking(false);
+    exposure_->setToolTip(tr("Brightness of the picture in stops: +1 doubles it. The environment's light "
+                             "is not changed, only how it is shown (and exported as PNG; an EXR is "
+                             "written before exposure)."));
     sessions_->track(exposure_);
     connect(exposure_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         editDisplay([v](DisplaySettings& d) { d.exposureEv = static_cast<float>(v); }, exposure_);
@@ -155,6 +167,8 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
 
     toneMap_ = new QComboBox(this);
     toneMap_->setObjectName(QStringLiteral("toneMapCombo"));
+    toneMap_->setToolTip(tr("How light brighter than the screen's white is shown: linear clips it, "
+                            "Reinhard and ACES (film-like) roll it off smoothly"));
     for (ToneMap map : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
         toneMap_->addItem(QString::fromLatin1(toneMapName(map)), static_cast<int>(map));
     connect(toneMap_, &QComboBox::currentIndexChanged, this, [this](int) {
@@ -165,6 +179,8 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
 
     samples_ = new QComboBox(this);
     samples_->setObjectName(QStringLiteral("samplesCombo"));
+    samples_->setToolTip(tr("Smooths the objects' edges (multisampling). Skipped while you drag or the "
+                            "turntable turns, so the view stays quick."));
     for (int n : {1, 2, 4, 8}) samples_->addItem(n == 1 ? tr("off") : QStringLiteral("%1×").arg(n), n);
     connect(samples_, &QComboBox::currentIndexChanged, this, [this](int) {
         const int n = samples_->currentData().toInt();
