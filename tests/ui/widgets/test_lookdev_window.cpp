@@ -343,6 +343,10 @@ TEST(LookDevWindow, CompareBuilderKeepsTheLeftAndChangesTheRight) {
     EXPECT_EQ(w->viewport()->comparison().builder, Builder::Box);
     EXPECT_EQ(w->viewport()->rightLabel().left(3), QStringLiteral("box"));
     ASSERT_TRUE(settledFrame(*w));
+    // The right half builds its chain from the left's imported cube: the file is not read again.
+    ASSERT_TRUE(w->viewport()->comparisonEnvironments());
+    EXPECT_EQ(w->viewport()->comparisonEnvironments()->counters().imports, 0u);
+    EXPECT_EQ(w->viewport()->comparisonEnvironments()->counters().chainBuilds, 1u);
     const QImage split = w->viewport()->grabFramebuffer();
     ASSERT_EQ(split.size(), plain.size());
     const int x = static_cast<int>(std::lround(w->viewport()->dividerFraction() * static_cast<float>(split.width())));
@@ -377,6 +381,10 @@ TEST(LookDevWindow, CompareMaterialShowsTheSelectedObjectWearingAnother) {
     ASSERT_TRUE(compared);
     // The shadow scene: only the selected object's material differs, and it is the chosen one.
     EXPECT_EQ(w->viewport()->rightLabel(), material->currentText());
+    // The same environment: neither read nor built again, only the new material's lobes.
+    EXPECT_EQ(compared->counters().imports, 0u);
+    EXPECT_EQ(compared->counters().chainBuilds, 0u);
+    EXPECT_EQ(compared->current().get(), w->environments()->current().get());
     EXPECT_FALSE(w->isWindowModified());
 }
 
@@ -449,4 +457,25 @@ TEST(LookDevWindow, TheShortcutsWindowListsTheViewKeysAndGestures) {
     EXPECT_TRUE(has(QStringLiteral("Turntable"), QStringLiteral("T")));
     EXPECT_TRUE(has(QStringLiteral("Undo"), QStringLiteral("Ctrl+Z")));
     EXPECT_TRUE(has(QStringLiteral("Turn the environment"), QStringLiteral("Ctrl")));
+}
+
+TEST(LookDevWindow, ABrokenComparedEnvironmentIsAMessageAndTheViewKeepsDrawing) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    const QString broken = dir.filePath(QStringLiteral("broken.hdr"));
+    writeFile(broken, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 128\ntruncated");
+    auto w = openWindow();
+    ASSERT_TRUE(settledFrame(*w));
+    const Scene before = w->document()->scene();
+    QSignalSpy messages(w.get(), &MainWindow::messageShown);
+    w->viewToolBar()->compareEnvironment(broken);
+    ASSERT_EQ(w->viewport()->comparison().kind, Comparison::Kind::Environment);
+    ASSERT_TRUE(waitUntil([&] { return w->lastMessageIsError() && w->lastMessage().contains(QStringLiteral("broken.hdr")); },
+                          kEnvironmentTimeoutMs))
+        << w->lastMessage().toStdString();
+    EXPECT_TRUE(w->lastMessage().startsWith(QStringLiteral("Comparison: "))) << w->lastMessage().toStdString();
+    EXPECT_EQ(w->document()->scene(), before) << "the scene's own environment changed";
+    QSignalSpy frames(w->viewport(), &Viewport::frameDrawn);
+    w->viewport()->update();
+    EXPECT_TRUE(waitUntil([&] { return frames.count() > 0; }, kFrameTimeoutMs));
 }

@@ -186,6 +186,11 @@ void EnvironmentManager::startJob() {
         });
 }
 
+void EnvironmentManager::startFrom(std::shared_ptr<const PreparedEnvironment> environment) {
+    if (current_ || busy_ || !environment) return;
+    adopt(std::move(environment));
+}
+
 void EnvironmentManager::adopt(std::shared_ptr<const PreparedEnvironment> next) {
     current_ = std::move(next);
     emit environmentReady();

@@ -445,12 +445,8 @@ void MainWindow::createViewToolBar() {
         if (!path.isEmpty()) viewToolBar_->compareEnvironment(path);
     });
     // The comparison's environment is read by its own manager: its failures are shown too.
-    connect(viewport_, &Viewport::comparisonChanged, this, [this] {
-        if (EnvironmentManager* compared = viewport_->comparisonEnvironments())
-            connect(compared, &EnvironmentManager::failed, this,
-                    [this](const QString& message) { showMessage(tr("Comparison: %1").arg(message), true); },
-                    Qt::UniqueConnection);
-    });
+    connect(viewport_, &Viewport::comparisonFailed, this,
+            [this](const QString& message) { showMessage(tr("Comparison: %1").arg(message), true); });
 }
 
 void MainWindow::restoreLayout() {

@@ -170,7 +170,8 @@ void Viewport::paintGL() {
         };
         label(leftLabel(), 0, x, Qt::AlignLeft);
         QString right = rightLabel();
-        if (!compareEnvironments_->current() || !compareEnvironments_->current()->complete())
+        if (!compareEnvironments_->current() || !compareEnvironments_->current()->complete() ||
+            compareEnvironments_->busy())
             right += tr(" (building…)");
         label(right, x, width(), Qt::AlignRight);
     }
@@ -368,6 +369,13 @@ void Viewport::setComparison(const Comparison& comparison) {
                     qOverload<>(&QWidget::update));
             connect(compareEnvironments_.get(), &EnvironmentManager::lobesReady, this,
                     qOverload<>(&QWidget::update));
+            connect(compareEnvironments_.get(), &EnvironmentManager::failed, this, &Viewport::comparisonFailed);
+            // The same file (a builder or a material compared): no second read of it; the right
+            // half draws the left's environment until its own is built ("building…" over it).
+            const std::shared_ptr<const PreparedEnvironment> shared = environments_->current();
+            if (shared && comparison_.kind != Comparison::Kind::Environment)
+                compareEnvironments_->startFrom(shared);
+            compareDocument_->resetScene(comparedScene(document_->scene()));
             compareEnvironments_->watch(compareDocument_.get());
         }
         syncComparison();

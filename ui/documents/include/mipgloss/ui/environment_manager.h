@@ -54,6 +54,12 @@ public:
     // Makes sure the environment satisfies (settings, needs); starts a job if it does not.
     void request(const EnvironmentSettings& settings, const ChainNeeds& needs);
 
+    // Before watch(): starts from `environment`, made by another manager (a comparison's shadow
+    // scene, viewport.h). It is current at once; a request it satisfies builds nothing, one with
+    // the same file and another builder starts from its imported cube instead of reading the file
+    // again. Ignored once this manager has an environment of its own.
+    void startFrom(std::shared_ptr<const PreparedEnvironment> environment);
+
     // The environment to draw with; null until the first one is ready. Every new chain or
     // irradiance map comes as a new object, so the renderer uploads only when the pointer changes.
     // May be an early one (complete() false) while its chain is built; lobe cubes are never made

@@ -106,6 +106,7 @@ signals:
     void glFailed(const QString& message);
     void cameraChanged();  // any gesture, framing or setCamera
     void comparisonChanged();
+    void comparisonFailed(const QString& message);  // the right half's environment could not be read
 
 public:
     static constexpr float kMinFov = 10.0f, kMaxFov = 90.0f;
