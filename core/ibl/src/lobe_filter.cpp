@@ -438,9 +438,12 @@ LobeSource baseSource(const CubeMap& base) {
 }
 
 namespace {
+// In double: an energy moment of a map scaled by 1e-30 is about 1e-34, whose square underflows
+// float to 0 (the texel then fell back to its geometric centre: 15 % off at level 1, issue 24).
 glm::vec3 normalizedOr(const glm::vec3& v, const glm::vec3& fallback) {
-    const float len = glm::length(v);
-    return len > 0.0f && std::isfinite(len) ? v / len : fallback;
+    const glm::dvec3 d(v);
+    const double len = glm::length(d);
+    return len > 0.0 && std::isfinite(len) ? glm::vec3(d / len) : fallback;
 }
 }  // namespace
 
