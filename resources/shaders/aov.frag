@@ -31,6 +31,7 @@ uniform bool uDiffuseIrradiance;
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#include "cube_lod.glsl"
 
 layout(location = 0) out vec4 aovDirection;  // xyz: unit direction, w: exponent
 layout(location = 1) out vec4 aovExact;      // x: 1 exact, 0 not
@@ -40,10 +41,16 @@ layout(location = 4) out vec4 aovSpecularWeight;    // rgb: the specular layer's
 layout(location = 5) out vec4 aovCoatDirection;     // xyz, w: the coat's exponent
 layout(location = 6) out vec4 aovCoatWeight;        // rgb: the coat's weight
 
+// Whether texture(cube, direction) here reads the base level alone (cube_lod.glsl: the level the
+// GPU computes, not textureQueryLod, which on llvmpipe is levels off for cube maps).
+bool baseOnly(samplerCube cube, vec3 direction) {
+    return readsBaseLevelOnly(direction, float(textureSize(cube, 0).x));
+}
+
 // A lobe read exactly: from a cube that holds it at full width, at its base level.
 bool exactRead(bool useLobe, bool lobeExact, samplerCube lobe, bool mirror, samplerCube chain, vec3 direction) {
-    if (useLobe) return lobeExact && textureQueryLod(lobe, direction).y <= 0.0;
-    return mirror && textureQueryLod(chain, direction).y <= 0.0;
+    if (useLobe) return lobeExact && baseOnly(lobe, direction);
+    return mirror && baseOnly(chain, direction);
 }
 
 void main() {
@@ -63,9 +70,9 @@ void main() {
         layerWeights(cosView, wDiffuse, wSpecular, wCoat);
         bool exact = exactRead(uUseLobe, uLobeExact, uLobe, isinf(uExponent), uEnvironment, r);
         if (uDiffuseIrradiance)
-            exact = exact && textureQueryLod(uIrradiance, normal).y <= 0.0;
+            exact = exact && baseOnly(uIrradiance, normal);
         else
-            exact = exact && uUseDiffuseLobe && uDiffuseLobeExact && textureQueryLod(uDiffuseLobe, normal).y <= 0.0;
+            exact = exact && uUseDiffuseLobe && uDiffuseLobeExact && baseOnly(uDiffuseLobe, normal);
         if (uCoat > 0.0)
             exact = exact && exactRead(uUseCoatLobe, uCoatLobeExact, uCoatLobe, isinf(uCoatExponent), uCoatChain, r);
         aovDirection = vec4(r, uExponent);
@@ -86,12 +93,12 @@ void main() {
     // base level (footprint LOD <= 0), never through the grazing option's per-fragment blend.
     bool exact = false;
     if (uLookup == LOOKUP_IRRADIANCE) {
-        exact = textureQueryLod(uIrradiance, direction).y <= 0.0;
+        exact = baseOnly(uIrradiance, direction);
     } else if (!uSharperAtGrazing) {
         if (uUseLobe)
-            exact = uLobeExact && textureQueryLod(uLobe, direction).y <= 0.0;
+            exact = uLobeExact && baseOnly(uLobe, direction);
         else if (isinf(exponent))
-            exact = textureQueryLod(uEnvironment, direction).y <= 0.0;
+            exact = baseOnly(uEnvironment, direction);
     }
     aovDirection = vec4(direction, exponent);
     aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);

@@ -493,14 +493,16 @@ QByteArray shaderSource(const char* path) {
     QFile file(QString::fromUtf8(path));
     if (!file.open(QIODevice::ReadOnly)) return {};
     QByteArray source = file.readAll();
-    // #include "layered.glsl" (GLSL has no includes): the file's text in its place, then #line so
-    // the compiler's line numbers stay those of the including file.
-    const QByteArray include = "#include \"layered.glsl\"\n";
-    if (const qsizetype at = source.indexOf(include); at >= 0) {
-        QFile shared(QStringLiteral(":/mipgloss/shaders/layered.glsl"));
-        if (!shared.open(QIODevice::ReadOnly)) return {};
-        const int lineAfter = static_cast<int>(source.left(at).count('\n')) + 2;
-        source.replace(at, include.size(), shared.readAll() + "#line " + QByteArray::number(lineAfter) + "\n");
+    // #include "layered.glsl", "cube_lod.glsl" (GLSL has no includes): the file's text in its
+    // place, then #line so the compiler's line numbers stay those of the including file.
+    for (const char* name : {"layered.glsl", "cube_lod.glsl"}) {
+        const QByteArray include = QByteArray("#include \"") + name + "\"\n";
+        if (const qsizetype at = source.indexOf(include); at >= 0) {
+            QFile shared(QStringLiteral(":/mipgloss/shaders/") + QLatin1String(name));
+            if (!shared.open(QIODevice::ReadOnly)) return {};
+            const int lineAfter = static_cast<int>(source.left(at).count('\n')) + 2;
+            source.replace(at, include.size(), shared.readAll() + "#line " + QByteArray::number(lineAfter) + "\n");
+        }
     }
     const qsizetype versionEnd = source.indexOf('\n') + 1;
     // #line keeps the compiler's line numbers those of the file.
