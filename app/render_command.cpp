@@ -53,7 +53,7 @@ const char* const kRenderUsage = R"(
                   [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
                   [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
-                  [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--quiet]
+                  [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--no-settle] [--quiet]
                   [--spin DEG] [--turntable N] [--turntable-spin object|environment]
                   [--compare-builder NAME] [--compare-env FILE]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr|PATTERN
@@ -110,6 +110,9 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  multiplied by), and NdotV; a pixel marked exact is then Σ weight ⊙ lobe(dir),
                  and the single-lobe channels describe its specular layer
   The picture is the settled one: every material's own lobe cube is made first.
+  --no-settle    the picture the window shows while a slider moves instead: no lobe cube, every
+                 glossy lobe read from the chain's levels (the instant path; its AOV marks only
+                 mirrors and the irradiance map exact), so that path can be checked from outside
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
@@ -294,7 +297,7 @@ int runRender(Args args, const char* argv0) {
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
     std::optional<Builder> builder;
-    bool noBackground = false, quiet = false;
+    bool noBackground = false, quiet = false, noSettle = false;
     int width = 0, height = 0;
     std::optional<float> spin;
     std::optional<int> turntable;
@@ -355,6 +358,7 @@ int runRender(Args args, const char* argv0) {
             compareEnv = value();
         } else if (a == "--no-background") noBackground = true;
         else if (a == "--quiet") quiet = true;
+        else if (a == "--no-settle") noSettle = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (!scenePath) scenePath = a;
         else throw UsageError("more than one scene given");
@@ -472,7 +476,8 @@ int runRender(Args args, const char* argv0) {
     // The settled picture: each lobe in use from its own cube. Made once: turning the view
     // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
-    const std::vector<std::shared_ptr<const LobeCube>> lobes = makeLobeCubes(*environment, scene);
+    const std::vector<std::shared_ptr<const LobeCube>> lobes =
+        noSettle ? std::vector<std::shared_ptr<const LobeCube>>{} : makeLobeCubes(*environment, scene);
     const double lobeSeconds = secondsSince(lobesStart);
     renderer.setLobes(lobes);
     // The status line, with the counters of the render that was `plain` (a comparison's left half).
@@ -530,7 +535,8 @@ int runRender(Args args, const char* argv0) {
         if (!quiet)
             for (const std::string& w : otherEnvironment->report.warnings)
                 std::cerr << "mipgloss: warning: " << w << '\n';
-        renderer.setLobes(makeLobeCubes(*otherEnvironment, scene));
+        renderer.setLobes(noSettle ? std::vector<std::shared_ptr<const LobeCube>>{}
+                                   : makeLobeCubes(*otherEnvironment, scene));
         const double otherSeconds = secondsSince(otherStart);
         picture = besideEachOther(std::move(picture), draw(renderer, scene, view, otherEnvironment, width, height,
                                                            linear, *outPath));
