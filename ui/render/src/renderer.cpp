@@ -299,7 +299,11 @@ struct Renderer::Impl {
     }
 
     // Sends `levels` as the texture's levels firstLevel, firstLevel + 1, … (those below stay) and
-    // makes the last of them its GL_TEXTURE_MAX_LEVEL.
+    // makes the last of them its GL_TEXTURE_MAX_LEVEL. 32-bit float, as the core holds them: half
+    // floats clamp at 65504 (a mirror kept 0.1 % of a one-pixel sun of 1e9, an n = 1024 sphere 7 %)
+    // and lose everything below 6e-8 (a map at 1e-30 was black), so the picture depended on the
+    // environment's absolute scale. Float costs twice the memory and no measurable frame time on
+    // llvmpipe (docs/radiance-range.md, issue 24).
     void uploadCube(GLuint texture, const std::vector<const CubeMap*>& levels, int firstLevel = 0) {
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, texture);
         gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -315,12 +319,12 @@ struct Renderer::Impl {
                 for (int y = 0; y < n; ++y)
                     for (int x = 0; x < n; ++x) {
                         const Rgb& c = cube.at(f, x, y);
-                        face[i++] = std::min(c.r, kHalfMax);
-                        face[i++] = std::min(c.g, kHalfMax);
-                        face[i++] = std::min(c.b, kHalfMax);
+                        face[i++] = c.r;
+                        face[i++] = c.g;
+                        face[i++] = c.b;
                     }
                 gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(f),
-                                 static_cast<GLint>(level), GL_RGB16F, n, n, 0, GL_RGB, GL_FLOAT,
+                                 static_cast<GLint>(level), GL_RGB32F, n, n, 0, GL_RGB, GL_FLOAT,
                                  face.data());
             }
         }
@@ -453,7 +457,9 @@ struct Renderer::Impl {
         releaseTargets();
         gl->glGenRenderbuffers(1, &msColour);
         gl->glBindRenderbuffer(GL_RENDERBUFFER, msColour);
-        gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA16F, width, height);
+        // The linear picture in 32-bit float, like the cubes it reads (uploadCube): scene-referred
+        // at any scale until the tone pass applies the exposure.
+        gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA32F, width, height);
         gl->glGenRenderbuffers(1, &msDepth);
         gl->glBindRenderbuffer(GL_RENDERBUFFER, msDepth);
         gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width,
@@ -466,7 +472,7 @@ struct Renderer::Impl {
 
         gl->glGenTextures(1, &resolveTexture);
         gl->glBindTexture(GL_TEXTURE_2D, resolveTexture);
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         gl->glGenFramebuffers(1, &resolveFbo);

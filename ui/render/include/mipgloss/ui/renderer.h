@@ -10,8 +10,9 @@
 // level; changing λ picks a sampler, nothing is rebuilt. Once λ rests and the material's lobe
 // cube has arrived (setLobes), the object reads that instead: the exact lobe (lobes.h).
 //
-// Frame: objects and background into a multisampled RGBA16F target (linear HDR), resolved, then
-// one pass applies exposure, the tone map and the sRGB encoding into the caller's framebuffer.
+// Frame: objects and background into a multisampled RGBA32F target (linear HDR at any scale,
+// docs/radiance-range.md), resolved, then one pass applies exposure, the tone map and the sRGB
+// encoding into the caller's framebuffer.
 // Requires an OpenGL 4.1 core context (current during every call).
 #pragma once
 
