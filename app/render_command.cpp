@@ -316,7 +316,7 @@ int runRender(Args args, const char* argv0) {
         else if (a == "--library") libraryPath = value();
         else if (a == "--material") libraryMaterial = value();
         else if (a == "--aov") aovPath = value();
-        else if (a == "--exposure") exposure = parseFloat(a, value(), -20.0f, 20.0f);
+        else if (a == "--exposure") exposure = parseFloat(a, value(), -kMaxExposureEv, kMaxExposureEv);
         else if (a == "--background-lambda") backgroundLambda = parseLambda(a, value());
         else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
         else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);

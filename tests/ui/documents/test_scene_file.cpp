@@ -775,3 +775,22 @@ TEST(SceneFile, CameraRoundTripsAndBadValuesAreRefusedByKey) {
         EXPECT_FALSE(fs::exists(refused));
     }
 }
+
+// The exposure's range (kMaxExposureEv) shows a map stored at 1e-30 at its own brightness
+// (+99.66 EV): kept as written; beyond the range it is clamped with a warning naming the key.
+TEST(SceneFile, ExposureKeepsAMapAt1em30VisibleAndClampsBeyondTheRange) {
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    const fs::path file = fs::path(dir.path().toStdString()) / "dim.mipgloss";
+    Scene scene = makeFigure1Scene();
+    scene.display.exposureEv = 99.66f;
+    saveScene(scene, file);
+    EXPECT_EQ(loadScene(file).display.exposureEv, 99.66f);
+    const std::string json = R"({"format": "mipgloss-scene", "version": 6, "display": {"exposureEv": -500},
+        "materials": [{"name": "m", "lambda": 1}], "objects": [{"mesh": "builtin:sphere", "material": "m"}]})";
+    writeText(file, json);
+    SceneFileReport report;
+    EXPECT_EQ(loadScene(file, &report).display.exposureEv, -kMaxExposureEv);
+    ASSERT_FALSE(report.warnings.empty());
+    EXPECT_NE(report.warnings.front().find("display.exposureEv"), std::string::npos) << report.warnings.front();
+}

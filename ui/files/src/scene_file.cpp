@@ -33,7 +33,6 @@ constexpr const char* kBuiltinSphere = "builtin:sphere";
 // Sensible bounds for the values that are clamped on load (see scene_file.h).
 constexpr int kMinFaceSize = 4, kMaxFaceSize = 4096;
 constexpr int kMaxSamples = 16;
-constexpr double kMaxExposureEv = 20.0;
 
 bool isBuiltin(const std::string& s) { return s.rfind(kBuiltinPrefix, 0) == 0; }
 
@@ -118,7 +117,8 @@ public:
         d.showBackground = boolean(o, "showBackground", where, d.showBackground);
         d.backgroundLambda = static_cast<float>(lambdaValue(o, "backgroundLambda", where));
         d.exposureEv = static_cast<float>(clamped(number(o, "exposureEv", where, d.exposureEv),
-                                                  -kMaxExposureEv, kMaxExposureEv,
+                                                  -static_cast<double>(kMaxExposureEv),
+                                                  static_cast<double>(kMaxExposureEv),
                                                   "display.exposureEv"));
         const std::string aces = toneMapName(ToneMap::Aces);
         const std::string map = string(o, "toneMap", where, &aces);

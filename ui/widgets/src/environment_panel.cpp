@@ -151,7 +151,7 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
 
     exposure_ = new QDoubleSpinBox(this);
     exposure_->setObjectName(QStringLiteral("exposureSpin"));
-    exposure_->setRange(-20.0, 20.0);
+    exposure_->setRange(-static_cast<double>(kMaxExposureEv), static_cast<double>(kMaxExposureEv));
     exposure_->setSingleStep(0.5);
     exposure_->setDecimals(1);
     exposure_->setSuffix(QStringLiteral(" EV"));

@@ -136,10 +136,15 @@ struct EnvironmentSettings {
     bool operator==(const EnvironmentSettings&) const = default;
 };
 
+// The exposure's range, everywhere it is set (panel, scene files, `render --exposure`): wide
+// enough to show a map stored at 1e-30 or 1e30 at its own brightness (±99.7 EV), since the renderer
+// holds any radiance (docs/radiance-range.md), and 2^±120 stays well inside float's range.
+inline constexpr float kMaxExposureEv = 120.0f;
+
 struct DisplaySettings {
     bool showBackground = true;
     float backgroundLambda = 0.0f;  // the background's own blur, as a material's λ (phong.h)
-    float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping
+    float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping, |EV| ≤ kMaxExposureEv
     ToneMap toneMap = ToneMap::Aces;
     int samples = 4;                // multisampling
     // Turns the environment about +Y when drawing (objects' reflections and the background). A
