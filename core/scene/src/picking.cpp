@@ -22,7 +22,9 @@ Ray pixelRay(const OrbitCamera& camera, const Scene& scene, int width, int heigh
     return {origin, glm::normalize(glm::vec3(farPoint) / farPoint.w - origin)};
 }
 
-int firstObjectHit(const Scene& scene, const Ray& ray) {
+int firstObjectHit(const Scene& scene, const Ray& ray) { return firstHit(scene, ray).index; }
+
+ObjectHit firstHit(const Scene& scene, const Ray& ray) {
     int best = -1;
     float bestDistance = std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -39,7 +41,7 @@ int firstObjectHit(const Scene& scene, const Ray& ray) {
             best = static_cast<int>(i);
         }
     }
-    return best;
+    return {best, best >= 0 ? bestDistance : 0.0f};
 }
 
 }  // namespace mipgloss

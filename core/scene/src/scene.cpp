@@ -199,20 +199,31 @@ Bounds sceneBounds(const Scene& scene) {
     Bounds out{glm::vec3(inf), glm::vec3(-inf)};
     bool any = false;
     for (const SceneObject& object : scene.objects) {
-        if (!object.visible || !object.mesh) continue;
-        // The eight corners of the mesh box under the transform.
-        const glm::mat4 m = object.transform.matrix();
-        const Bounds& b = object.mesh->bounds;
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                              (corner & 4) ? b.max.z : b.min.z);
-            const glm::vec3 w(m * glm::vec4(p, 1.0f));
-            out.min = glm::min(out.min, w);
-            out.max = glm::max(out.max, w);
-        }
+        if (!object.visible) continue;
+        const std::optional<Bounds> b = objectBounds(object);
+        if (!b) continue;
+        out.min = glm::min(out.min, b->min);
+        out.max = glm::max(out.max, b->max);
         any = true;
     }
     if (!any) return Bounds{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    return out;
+}
+
+std::optional<Bounds> objectBounds(const SceneObject& object) {
+    if (!object.mesh) return std::nullopt;
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    Bounds out{glm::vec3(inf), glm::vec3(-inf)};
+    // The eight corners of the mesh box under the transform.
+    const glm::mat4 m = object.transform.matrix();
+    const Bounds& b = object.mesh->bounds;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                          (corner & 4) ? b.max.z : b.min.z);
+        const glm::vec3 w(m * glm::vec4(p, 1.0f));
+        out.min = glm::min(out.min, w);
+        out.max = glm::max(out.max, w);
+    }
     return out;
 }
 

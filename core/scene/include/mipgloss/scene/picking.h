@@ -23,4 +23,12 @@ Ray pixelRay(const OrbitCamera& camera, const Scene& scene, int width, int heigh
 // uses, so what is picked is what could be drawn.
 int firstObjectHit(const Scene& scene, const Ray& ray);
 
+// The same, with how far along the ray it is met (negative when the ray starts inside the
+// sphere); index -1 when nothing is.
+struct ObjectHit {
+    int index = -1;
+    float distance = 0.0f;
+};
+ObjectHit firstHit(const Scene& scene, const Ray& ray);
+
 }  // namespace mipgloss

@@ -189,6 +189,9 @@ Scene makeFigure1Scene();
 
 // World bounds of the visible objects (empty scene: a unit box at the origin).
 Bounds sceneBounds(const Scene& scene);
+// The world-space box of one object: its mesh box's eight corners under its transform; nullopt
+// when it has no mesh. sceneBounds is the union of its visible objects'.
+std::optional<Bounds> objectBounds(const SceneObject& object);
 
 
 }  // namespace mipgloss

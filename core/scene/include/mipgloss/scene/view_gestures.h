@@ -14,12 +14,8 @@
 
 namespace mipgloss {
 
-// The world-space box of `object` (its mesh box's eight corners under its transform); nullopt when
-// it has no mesh.
-std::optional<Bounds> objectBounds(const SceneObject& object);
-
 // The point a zoom at the cursor aims at: where `ray` first meets a visible object's picking sphere
-// (picking.h), else where it crosses the plane through the camera's target facing the camera
+// (picking.h, firstHit), else where it crosses the plane through the camera's target facing the camera
 // (what an orbit turns about), else nullopt (the ray runs parallel to that plane or away from it).
 std::optional<glm::vec3> zoomPivot(const Scene& scene, const OrbitCamera& camera, const Ray& ray);
 
