@@ -131,7 +131,9 @@ private:
     void cleanup();
     int pickObject(QPoint position) const;
     // The scene as drawn: the turntable's environment angle and, while dragging, no multisampling.
-    Scene shownScene(bool interactive) const;
+    // The document's own when neither applies; else a copy, held in `changed` (a frame copies the
+    // scene only when it must).
+    const Scene& shownScene(bool interactive, std::optional<Scene>& changed) const;
     // The right half's scene: the shown scene with the comparison's change.
     Scene comparedScene(const Scene& shown) const;
     void syncComparison();  // the shadow document follows the scene
