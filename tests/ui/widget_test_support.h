@@ -1,12 +1,19 @@
 // Helpers for the widget tests: real key input and waiting on the event loop.
 #pragma once
 
+#include "mipgloss/ui/main_window.h"
+
+#include <gtest/gtest.h>
+
 #include <QAbstractSpinBox>
 #include <QElapsedTimer>
+#include <QSize>
+#include <QStandardPaths>
 #include <QString>
 #include <QTest>
 
 #include <functional>
+#include <memory>
 
 namespace mipgloss::test {
 
@@ -28,6 +35,20 @@ inline bool waitUntil(const std::function<bool()>& done, int timeoutMs) {
         QTest::qWait(10);
     }
     return true;
+}
+
+// A window that keeps to the test's folders (QStandardPaths test mode: autosaves, settings) and
+// discards unsaved changes without a dialog when a test opens or makes a new scene over them;
+// shown at `size`, not maximised (as the window opens the first time), whatever the screen.
+inline std::unique_ptr<ui::MainWindow> openWindow(QSize size = QSize(1200, 760)) {
+    QStandardPaths::setTestModeEnabled(true);
+    auto w = std::make_unique<ui::MainWindow>();
+    w->prompts().saveChanges = [](const QString&) { return ui::MainWindow::SaveChoice::Discard; };
+    w->setWindowState(Qt::WindowNoState);
+    w->resize(size);
+    w->show();
+    EXPECT_TRUE(QTest::qWaitForWindowExposed(w.get()));
+    return w;
 }
 
 }  // namespace mipgloss::test

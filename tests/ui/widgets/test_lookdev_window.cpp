@@ -39,23 +39,13 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::openWindow;
 using mipgloss::test::waitUntil;
 
 namespace {
 
 constexpr int kEnvironmentTimeoutMs = 120000;  // llvmpipe and a shared CPU are slow
 constexpr int kFrameTimeoutMs = 60000;
-
-std::unique_ptr<MainWindow> openWindow(QSize size = QSize(1200, 760)) {
-    QStandardPaths::setTestModeEnabled(true);
-    auto w = std::make_unique<MainWindow>();
-    w->prompts().saveChanges = [](const QString&) { return MainWindow::SaveChoice::Discard; };
-    w->setWindowState(Qt::WindowNoState);
-    w->resize(size);
-    w->show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(w.get()));
-    return w;
-}
 
 bool environmentIdle(MainWindow& w) {
     const bool main = w.environments()->current() && w.environments()->current()->complete() &&

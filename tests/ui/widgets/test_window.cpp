@@ -52,6 +52,7 @@ using namespace mipgloss;
 using namespace mipgloss::ui;
 namespace fs = std::filesystem;
 using mipgloss::test::typeInto;
+using mipgloss::test::openWindow;
 using mipgloss::test::waitUntil;
 
 namespace {
@@ -71,18 +72,6 @@ constexpr int kFrameTimeoutMs = 60000;
     if (!w.viewport()->glError().isEmpty())
         return ::testing::AssertionFailure() << "GL: " << w.viewport()->glError().toStdString();
     return ::testing::AssertionSuccess();
-}
-
-// A window that keeps to the test's folders (QStandardPaths test mode: autosaves, settings) and
-// discards unsaved changes without a dialog when a test opens or makes a new scene over them.
-std::unique_ptr<MainWindow> openWindow() {
-    QStandardPaths::setTestModeEnabled(true);
-    auto w = std::make_unique<MainWindow>();
-    w->prompts().saveChanges = [](const QString&) { return MainWindow::SaveChoice::Discard; };
-    w->resize(1200, 760);
-    w->show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(w.get()));
-    return w;
 }
 
 std::string outputPath(const std::string& name) {

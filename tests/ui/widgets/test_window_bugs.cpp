@@ -41,21 +41,12 @@ using namespace mipgloss;
 using namespace mipgloss::ui;
 namespace fs = std::filesystem;
 using mipgloss::test::typeInto;
+using mipgloss::test::openWindow;
 using mipgloss::test::waitUntil;
 
 namespace {
 
 constexpr int kEnvironmentTimeoutMs = 120000;  // llvmpipe and a shared CPU are slow
-
-std::unique_ptr<MainWindow> openWindow(int width = 1200, int height = 760) {
-    QStandardPaths::setTestModeEnabled(true);
-    auto w = std::make_unique<MainWindow>();
-    w->prompts().saveChanges = [](const QString&) { return MainWindow::SaveChoice::Discard; };
-    w->resize(width, height);
-    w->show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(w.get()));
-    return w;
-}
 
 bool environmentSettled(MainWindow& w) {
     return waitUntil([&] { return w.environments()->current() && !w.environments()->busy() && !w.importing(); },
@@ -342,7 +333,7 @@ TEST(WindowBugs, StatusBarSaysWhenTheEnvironmentIsLoadedOrFailed) {
 // Bug: a long error ran into the environment status on the right. The message is cut short (…)
 // to the room left beside it; the whole of it is in the banner and the tooltip.
 TEST(WindowBugs, ALongErrorIsCutShortBesideTheEnvironmentStatus) {
-    auto w = openWindow(1280, 800);
+    auto w = openWindow(QSize(1280, 800));
     ASSERT_TRUE(environmentSettled(*w));
     const QString path = QStringLiteral("/tmp/nowhere") + QStringLiteral("/a folder with a long name").repeated(12) +
                          QStringLiteral("/sky.exr");
@@ -373,7 +364,7 @@ TEST(WindowBugs, EnvironmentStatusIsShownWhole) {
     const fs::path longName =
         dir / "studio_softbox_key_light_with_a_rim_from_the_left_shot_by_a_photographer_who_names_files_4k.exr";
     fs::copy_file(studio, longName);
-    auto w = openWindow(1280, 800);
+    auto w = openWindow(QSize(1280, 800));
     ASSERT_TRUE(environmentSettled(*w));
     ASSERT_TRUE(w->openEnvironment(qstr(longName)));
     ASSERT_TRUE(environmentLoaded(*w, longName));
