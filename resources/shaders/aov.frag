@@ -11,27 +11,23 @@ in vec3 vNormal;
 
 uniform samplerCube uEnvironment;
 uniform samplerCube uIrradiance;
-uniform samplerCube uLobe;
 uniform vec3 uCameraPosition;
 uniform mat3 uEnvironmentRotation;
 uniform int uLookup;
-uniform bool uUseLobe;
-uniform bool uLobeExact;       // the lobe cube holds the lobe at full width
+uniform bool uUseStack;
 uniform bool uSharperAtGrazing;
+uniform float uLambda;
 uniform float uExponent;       // the lobe the material means (+inf for a mirror)
 uniform bool uLayered;
 uniform samplerCube uCoatChain;
-uniform samplerCube uCoatLobe;
-uniform samplerCube uDiffuseLobe;
-uniform bool uUseCoatLobe;
-uniform bool uUseDiffuseLobe;
-uniform bool uCoatLobeExact;
-uniform bool uDiffuseLobeExact;
+uniform bool uUseCoatStack;
+uniform bool uUseDiffuseStack;
 uniform bool uDiffuseIrradiance;
 uniform float uCoatExponent;
 
 #include "layered.glsl"
 #include "cube_lod.glsl"
+#include "lobe_stack.glsl"
 
 layout(location = 0) out vec4 aovDirection;  // xyz: unit direction, w: exponent
 layout(location = 1) out vec4 aovExact;      // x: 1 exact, 0 not
@@ -47,10 +43,16 @@ bool baseOnly(samplerCube cube, vec3 direction) {
     return readsBaseLevelOnly(direction, float(textureSize(cube, 0).x));
 }
 
-// A lobe read exactly: from a cube that holds it at full width, at its base level.
-bool exactRead(bool useLobe, bool lobeExact, samplerCube lobe, bool mirror, samplerCube chain, vec3 direction) {
-    if (useLobe) return lobeExact && baseOnly(lobe, direction);
-    return mirror && baseOnly(chain, direction);
+// What one lobe lookup shows, as object.frag's readLobe makes it: the exponent, and whether the
+// value is that lobe at that direction. Stack reads are exact (base level, the exact lobe widened
+// by the footprint, which is the exponent reported); a mirror read is exact where the GPU reads
+// the mirror's base level; the chain standing in for a glossy lobe never is.
+bool lobeRead(bool useStack, float n, vec3 d, vec3 dx, vec3 dy, samplerCube chain, out float shown) {
+    float widened = footprintExponent(n, dx, dy);
+    bool fromStack = useStack && stackHolds(widened);
+    bool mirrorBase = isinf(n) && baseOnly(chain, d);
+    shown = fromStack ? widened : n;
+    return fromStack || mirrorBase;
 }
 
 void main() {
@@ -58,47 +60,57 @@ void main() {
     vec3 v = normalize(uCameraPosition - vWorldPosition);
     if (!gl_FrontFacing) n = -n;
     float cosView = clamp(dot(n, v), 0.0, 1.0);
+    vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
+    vec3 normal = normalize(uEnvironmentRotation * n);
+    vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
     aovDiffuseDirection = vec4(0.0);
     aovDiffuseWeight = vec4(0.0, 0.0, 0.0, cosView);
     aovSpecularWeight = vec4(0.0);
     aovCoatDirection = vec4(0.0);
     aovCoatWeight = vec4(0.0);
     if (uLayered) {
-        vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
-        vec3 normal = normalize(uEnvironmentRotation * n);
         vec3 wDiffuse, wSpecular, wCoat;
         layerWeights(cosView, wDiffuse, wSpecular, wCoat);
-        bool exact = exactRead(uUseLobe, uLobeExact, uLobe, isinf(uExponent), uEnvironment, r);
+        float specularShown, diffuseShown = 1.0, coatShown = uCoatExponent;
+        bool exact = lobeRead(uUseStack, uExponent, r, rdx, rdy, uEnvironment, specularShown);
         if (uDiffuseIrradiance)
             exact = exact && baseOnly(uIrradiance, normal);
         else
-            exact = exact && uUseDiffuseLobe && uDiffuseLobeExact && baseOnly(uDiffuseLobe, normal);
+            exact = lobeRead(uUseDiffuseStack, 1.0, normal, ndx, ndy, uEnvironment, diffuseShown) && exact;
         if (uCoat > 0.0)
-            exact = exact && exactRead(uUseCoatLobe, uCoatLobeExact, uCoatLobe, isinf(uCoatExponent), uCoatChain, r);
-        aovDirection = vec4(r, uExponent);
+            exact = lobeRead(uUseCoatStack, uCoatExponent, r, rdx, rdy, uCoatChain, coatShown) && exact;
+        aovDirection = vec4(r, specularShown);
         aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
-        aovDiffuseDirection = vec4(normal, 1.0);
+        aovDiffuseDirection = vec4(normal, diffuseShown);
         aovDiffuseWeight = vec4(wDiffuse, cosView);
         aovSpecularWeight = vec4(wSpecular, 0.0);
         if (uCoat > 0.0) {
-            aovCoatDirection = vec4(r, uCoatExponent);
+            aovCoatDirection = vec4(r, coatShown);
             aovCoatWeight = vec4(wCoat, 0.0);
         }
         return;
     }
-    vec3 direction = normalize(uEnvironmentRotation * (uLookup == LOOKUP_REFLECT ? reflect(-v, n) : n));
+    bool reflectLookup = uLookup == LOOKUP_REFLECT;
+    vec3 direction = reflectLookup ? r : normal;
+    vec3 ddx = reflectLookup ? rdx : ndx, ddy = reflectLookup ? rdy : ndy;
     float exponent = uLookup == LOOKUP_IRRADIANCE ? 1.0 : uExponent;
-    // Exact where the value is one lobe read at one direction with no footprint widening it:
-    // from the lobe cube (or the irradiance map, or the mirror level) with the GPU reading its
-    // base level (footprint LOD <= 0), never through the grazing option's per-fragment blend.
     bool exact = false;
     if (uLookup == LOOKUP_IRRADIANCE) {
         exact = baseOnly(uIrradiance, direction);
-    } else if (!uSharperAtGrazing) {
-        if (uUseLobe)
-            exact = uLobeExact && baseOnly(uLobe, direction);
-        else if (isinf(exponent))
-            exact = baseOnly(uEnvironment, direction);
+    } else if (uSharperAtGrazing) {
+        // The fragment's own λ (object.frag): exact where the stack holds it.
+        float lambda = uLambda * (1.0 - pow(1.0 - cosView, 5.0));
+        if (lambda > 0.0) {
+            float shown;
+            exact = lobeRead(uUseStack, grazingExponent(lambda), direction, ddx, ddy, uEnvironment, shown);
+            exponent = shown;
+        } else {
+            exponent = intBitsToFloat(0x7f800000);  // +inf: the mirror, read through the chain
+        }
+    } else {
+        float shown;
+        exact = lobeRead(uUseStack, exponent, direction, ddx, ddy, uEnvironment, shown);
+        exponent = shown;
     }
     aovDirection = vec4(direction, exponent);
     aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);

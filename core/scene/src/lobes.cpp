@@ -11,32 +11,108 @@
 
 namespace mipgloss {
 
-int lobeKey(float lambda) { return static_cast<int>(std::lround(static_cast<double>(lambda) * 1024.0)); }
+double stackLambda(int index) { return static_cast<double>(index) / kStackStepsPerLevel; }
 
-std::vector<int> lobesInUse(const Scene& scene) {
-    if (scene.environment.builder != Builder::Phong) return {};
-    std::set<int> keys;
-    auto use = [&](float lambda) {
-        if (isValidLambda(lambda) && lobeKey(lambda) > 0) keys.insert(lobeKey(lambda));
+double stackExponent(int index) { return lambdaToExponent(stackLambda(index)); }
+
+int stackTop(int baseSize) {
+    for (int j = 1; j <= kStackLast; ++j)
+        if (lobeCubeHoldsLobe(stackExponent(j), baseSize)) return j;
+    return kStackLast;
+}
+
+namespace {
+
+// 1 − Λ(n) = 1/(n + 2): the lobe's mean of 1 − cos θ, the quantity the blend and the footprint add.
+double oneMinusMeanCosine(double exponent) { return 1.0 / (exponent + 2.0); }
+
+}  // namespace
+
+std::optional<StackBlend> stackBlend(double exponent, int baseSize) {
+    const int top = stackTop(baseSize);
+    if (!(exponent >= 0.0) || exponent > stackExponent(top)) return std::nullopt;  // NaN, ∞, too sharp
+    // The sharper neighbour: the last entry (from top on) whose lobe is at least as sharp.
+    int sharper = std::clamp(static_cast<int>(std::floor(exponentToLambda(exponent) * kStackStepsPerLevel)), top, kStackLast);
+    while (sharper > top && stackExponent(sharper) < exponent) --sharper;
+    while (sharper < kStackLast && stackExponent(sharper + 1) >= exponent) ++sharper;
+    const int wider = std::min(sharper + 1, kStackLast);
+    const double u = oneMinusMeanCosine(exponent);
+    const double u0 = oneMinusMeanCosine(stackExponent(sharper)), u1 = oneMinusMeanCosine(stackExponent(wider));
+    const double weight = u1 > u0 ? std::clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+    return StackBlend{sharper, wider, weight};
+}
+
+double footprintExponent(double exponent, double dx, double dy) {
+    if (!(exponent >= 0.0)) return exponent;
+    const double u = (std::isinf(exponent) ? 0.0 : oneMinusMeanCosine(exponent)) + (dx * dx + dy * dy) / 24.0;
+    return u > 0.0 ? std::max(1.0 / u - 2.0, 0.0) : exponent;
+}
+
+namespace {
+
+// The λ the scene reads lobes at, and whether each wants every sharper entry (the grazing option).
+struct LambdaInUse {
+    double lambda;
+    bool grazing;
+};
+
+std::vector<LambdaInUse> lambdasInUse(const Scene& scene) {
+    std::vector<LambdaInUse> out;
+    if (scene.environment.builder != Builder::Phong) return out;
+    auto use = [&](double lambda, bool grazing) {
+        if (isValidLambda(lambda) && lambda > 0.0) out.push_back({lambda, grazing});
     };
-    if (scene.display.showBackground) use(scene.display.backgroundLambda);
+    if (scene.display.showBackground) use(scene.display.backgroundLambda, false);
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh) continue;
         const Material& m = scene.materialOf(object);
         if (!m.layered && m.mode == LookupMode::Normal && m.useIrradiance) continue;
-        for (const double lambda : lambdasOf(m)) use(static_cast<float>(lambda));
+        const bool grazing = !m.layered && m.sharperAtGrazing && m.mode == LookupMode::Reflect;
+        for (const double lambda : lambdasOf(m)) use(lambda, grazing);
     }
-    return {keys.begin(), keys.end()};
+    return out;
 }
 
-LobeCube makeLobeCube(const PreparedEnvironment& environment, int key) {
+}  // namespace
+
+std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
+    std::set<int> entries;
+    const int top = stackTop(baseSize);
+    for (const LambdaInUse& l : lambdasInUse(scene)) {
+        const auto blend = stackBlend(lambdaToExponent(l.lambda), baseSize);
+        if (l.grazing) {
+            // λ falls to 0 at grazing: every entry from the sharpest to this λ's.
+            const int last = std::min((blend ? blend->wider : top) + kFootprintReach, kStackLast);
+            for (int j = top; j <= last; ++j) entries.insert(j);
+        } else if (blend) {
+            // A pixel's footprint only ever widens its lobe (footprintExponent): the entries
+            // from the lobe's sharper neighbour to kFootprintReach past its wider one.
+            for (int j = blend->sharper; j <= std::min(blend->wider + kFootprintReach, kStackLast); ++j) entries.insert(j);
+        }
+    }
+    return {entries.begin(), entries.end()};
+}
+
+std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach) {
+    const std::vector<int> inUse = lobesInUse(scene, baseSize);
+    const int top = stackTop(baseSize);
+    std::vector<int> near;
+    for (int step = 1; step <= reach; ++step)
+        for (int j : inUse)
+            for (int k : {j - step, j + step})
+                if (k >= top && k <= kStackLast && !std::binary_search(inUse.begin(), inUse.end(), k) &&
+                    std::find(near.begin(), near.end(), k) == near.end())
+                    near.push_back(k);
+    return near;
+}
+
+LobeCube makeLobeCube(const PreparedEnvironment& environment, int index) {
     if (!environment.filter) throw std::logic_error("makeLobeCube: the environment has no Phong filter");
+    if (index < 1 || index > kStackLast) throw std::out_of_range("makeLobeCube: no stack entry " + std::to_string(index));
     LobeCube lobe;
-    lobe.key = key;
-    lobe.exponent = lambdaToExponent(key / 1024.0);
-    const int baseSize = environment.filter->baseSize();
-    const int size = lobeCubeSize(lobe.exponent, baseSize);
-    lobe.holdsLobe = lobeCubeHoldsLobe(lobe.exponent, baseSize);
+    lobe.index = index;
+    lobe.exponent = stackExponent(index);
+    const int size = lobeCubeSize(lobe.exponent, environment.filter->baseSize());
     lobe.cube = std::make_shared<const CubeMap>(environment.filter->filter(lobe.exponent, size));
     lobe.filter = environment.filter;
     return lobe;
@@ -45,8 +121,48 @@ LobeCube makeLobeCube(const PreparedEnvironment& environment, int key) {
 std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene) {
     std::vector<std::shared_ptr<const LobeCube>> lobes;
     if (!environment.filter) return lobes;
-    for (int key : lobesInUse(scene)) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, key)));
+    for (int index : lobesInUse(scene, environment.filter->baseSize()))
+        lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
     return lobes;
+}
+
+std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeCube>>& entries, double exponent,
+                                 int baseSize, const glm::vec3& direction) {
+    const auto blend = stackBlend(exponent, baseSize);
+    if (!blend) return std::nullopt;
+    const auto sharper = entries.find(blend->sharper), wider = entries.find(blend->wider);
+    if (sharper == entries.end()) return std::nullopt;
+    const Rgb a = sharper->second->cube->sample(direction);
+    if (blend->widerWeight == 0.0) return a;
+    if (wider == entries.end()) return std::nullopt;
+    const Rgb b = wider->second->cube->sample(direction);
+    return a + static_cast<float>(blend->widerWeight) * (b - a);
+}
+
+LobeStackAtlas lobeStackAtlas(const std::vector<std::pair<int, int>>& entries, int maxWidth) {
+    LobeStackAtlas atlas;
+    atlas.placed.resize(entries.size());
+    std::vector<std::size_t> order(entries.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return entries[a].second > entries[b].second; });
+    int widest = 0;
+    for (const auto& e : entries) widest = std::max(widest, 3 * (e.second + 2));
+    const int width = std::max(maxWidth, widest);
+    int x = 0, y = 0, shelf = 0;  // the current shelf starts at y and is `shelf` tall
+    for (std::size_t i : order) {
+        const int w = 3 * (entries[i].second + 2), h = 2 * (entries[i].second + 2);
+        if (x + w > width) {
+            y += shelf;
+            x = 0;
+            shelf = 0;
+        }
+        atlas.placed[i] = AtlasPlacement{entries[i].first, entries[i].second, x, y};
+        x += w;
+        shelf = std::max(shelf, h);
+        atlas.width = std::max(atlas.width, x);
+    }
+    atlas.height = y + shelf;
+    return atlas;
 }
 
 }  // namespace mipgloss

@@ -3,6 +3,7 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/layered.h"
+#include "mipgloss/scene/lobes.h"
 
 #include <sstream>
 
@@ -18,7 +19,7 @@ ObjectLookup planLookup(const Material& material, bool irradianceReady, int chai
     const bool chainOrLobe = plan.lookup != ShaderLookup::Irradiance;
     plan.sharperAtGrazing = material.sharperAtGrazing && chainOrLobe;
     plan.mirror = plan.lambda <= 0.0f && chainOrLobe;
-    plan.wantsLobeCube = chainOrLobe && plan.lambda > 0.0f && !material.sharperAtGrazing;
+    plan.wantsLobeCube = chainOrLobe && plan.lambda > 0.0f;
     plan.minLevel = material.sharperAtGrazing || plan.mirror
                         ? 0.0f
                         : static_cast<float>(chainLevelForExponent(plan.exponent, chainFaceSize));
@@ -70,6 +71,11 @@ std::string shaderDefines() {
     };
     defineFloat("MAX_LAMBDA", kMaxLambda);
     defineFloat("COAT_F0", kDielectricF0);
+    // The lobe stack (lobes.h, lobe_stack.glsl) and λ ↔ n (phong.h): n(λ) = 3·128²·4^−λ − 1.
+    define("STACK_SLOTS", kStackSlots);
+    define("STACK_STEPS_PER_LEVEL", kStackStepsPerLevel);
+    define("STACK_LAST", kStackLast);
+    defineFloat("LAMBDA_EXPONENT_SCALE", 3.0 * kLambdaReferenceSize * kLambdaReferenceSize);
     return text;
 }
 

@@ -63,12 +63,12 @@ TEST(LookupPlan, IrradianceIsReadByTheNormalOnlyOnceItsMapIsReady) {
     EXPECT_EQ(planLookup(m, true, kFace).lookup, ShaderLookup::Reflect);
 }
 
-TEST(LookupPlan, SharperAtGrazingPicksItsOwnLevelPerFragmentWithNoLobeCube) {
+TEST(LookupPlan, SharperAtGrazingReadsEachFragmentsLobeFromTheStackOrItsOwnChainLevel) {
     Material m = material(4.0f);
     m.sharperAtGrazing = true;
     const ObjectLookup plan = planLookup(m, true, kFace);
     EXPECT_TRUE(plan.sharperAtGrazing);
-    EXPECT_FALSE(plan.wantsLobeCube);
+    EXPECT_TRUE(plan.wantsLobeCube) << "the lobe stack holds every fragment's own lobe";
     EXPECT_EQ(plan.minLevel, 0.0f);
     EXPECT_EQ(plan.lambda, 4.0f);
     // Not for the irradiance map, which has no levels to pick.

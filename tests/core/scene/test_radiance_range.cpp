@@ -30,15 +30,16 @@ PreparedEnvironment prepared(const std::filesystem::path& file) {
 // Each cube of the environment with its name: base, every chain level the renderer reads (through
 // lastReadLevel; the deeper ones, faces of 4, 2 and 1 texels, hold a lobe at six to 96 points, whose
 // mean is not the sphere's: a point sun moves it by 1.1 % at the 1×1 level whatever its radiance),
-// the irradiance map and the lobe cubes of n = 8 … 4096 (the settled picture's; n = 1024 is the issue's).
+// the irradiance map and the lobe stack's entries nearest n = 8 … 4096 (n = 1024 is the issue's).
 std::vector<std::pair<std::string, CubeMap>> cubesOf(const PreparedEnvironment& env) {
     std::vector<std::pair<std::string, CubeMap>> cubes{{"base", *env.base}};
     for (int k = 0; k <= lastReadLevel(env.base->size()); ++k)
         cubes.emplace_back("level " + std::to_string(k), env.chain->levels[static_cast<std::size_t>(k)]);
     cubes.emplace_back("irradiance", *env.irradiance);
     for (double n : {8.0, 64.0, 1024.0, 4096.0}) {
-        const LobeCube lobe = makeLobeCube(env, lobeKey(static_cast<float>(exponentToLambda(n))));
-        cubes.emplace_back("lobe n " + std::to_string(static_cast<int>(n)), *lobe.cube);
+        // The lobe stack's entry nearest to n.
+        const LobeCube lobe = makeLobeCube(env, static_cast<int>(std::lround(exponentToLambda(n) * kStackStepsPerLevel)));
+        cubes.emplace_back("stack entry n " + std::to_string(static_cast<int>(lobe.exponent)), *lobe.cube);
     }
     return cubes;
 }

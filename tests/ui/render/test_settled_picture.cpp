@@ -1,8 +1,10 @@
-// The settled picture against the exact convolution, where the picture reads it: a sphere drawn
-// as `mipgloss render` draws it (every lobe in use from its own cube), its AOV telling for every
-// pixel the direction the environment was read at, the lobe shown and whether the pixel is meant
-// to equal that lobe there; the truth is the exact normalized Phong convolution of the base at
-// that direction (referenceLobeAt). Environment: the committed sunrise HDRI, which has a sun.
+// The picture against the exact convolution, where the picture reads it (issue 24's must-show):
+// a sphere drawn as `mipgloss render` draws it (every lobe from the lobe stack), its AOV telling for
+// every pixel the direction the environment was read at, the lobe shown (the material's, widened
+// by the pixel's footprint) and whether the pixel is meant to equal that lobe there; the truth is
+// the exact normalized Phong convolution of the base at that direction and exponent
+// (referenceLobeAt). Base 256, held-out HDRIs with and without a sun, exponents 2 … 4096 on and
+// between the stack's entries.
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/phong.h"
@@ -26,21 +28,48 @@ namespace {
 
 struct PictureCase {
     const char* name;
+    const char* map;  // under tests/assets/env
     double exponent;
     LookupMode mode;
-    int size;  // image side: sharp lobes need pixels finer than their cube's texels to be exact
 };
 
-std::shared_ptr<const PreparedEnvironment> sunrise(int faceSize) {
-    static std::map<int, std::shared_ptr<const PreparedEnvironment>> cache;
-    auto& env = cache[faceSize];
+std::shared_ptr<const PreparedEnvironment> environmentOf(const std::string& map, int faceSize) {
+    static std::map<std::pair<std::string, int>, std::shared_ptr<const PreparedEnvironment>> cache;
+    auto& env = cache[{map, faceSize}];
     if (!env) {
         EnvironmentSettings settings;
-        settings.source = test::asset("env/sunrise.exr").string();
+        settings.source = test::asset("env/" + map).string();
         settings.faceSize = faceSize;
         env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, false}));
     }
     return env;
+}
+
+std::shared_ptr<const PreparedEnvironment> sunrise(int faceSize) { return environmentOf("sunrise.exr", faceSize); }
+
+// The exact lobe of each pixel's own exponent at its direction. Exponents are many (each pixel's
+// footprint widens its lobe by its own amount), so the truth is computed at exponents 2^(1/32)
+// apart in n + 1 around them and interpolated in 1/(n + 2) (the blend the stack itself makes 2^¼
+// apart is within 0.6 %; this one, 8× finer, within 0.6 %/64 = 0.01 %).
+std::vector<Rgb> truthAt(const CubeMap& base, const std::vector<double>& exponents, const std::vector<glm::vec3>& dirs) {
+    constexpr double kCellsPerOctave = 32.0;
+    auto cellOf = [&](double n) { return static_cast<int>(std::floor(std::log2(n + 1.0) * kCellsPerOctave)); };
+    auto exponentAt = [&](int cell) { return std::exp2(cell / kCellsPerOctave) - 1.0; };
+    std::map<int, std::vector<std::size_t>> cells;
+    for (std::size_t i = 0; i < exponents.size(); ++i) cells[cellOf(exponents[i])].push_back(i);
+    std::vector<Rgb> truth(dirs.size());
+    for (const auto& [cell, members] : cells) {
+        std::vector<glm::vec3> d;
+        for (std::size_t i : members) d.push_back(dirs[i]);
+        const double n0 = exponentAt(cell), n1 = exponentAt(cell + 1);
+        const std::vector<Rgb> a = referenceLobeAt(base, n0, d), b = referenceLobeAt(base, n1, d);
+        for (std::size_t k = 0; k < members.size(); ++k) {
+            const double n = exponents[members[k]];
+            const double t = (1.0 / (n + 2.0) - 1.0 / (n0 + 2.0)) / (1.0 / (n1 + 2.0) - 1.0 / (n0 + 2.0));
+            truth[members[k]] = a[k] + static_cast<float>(t) * (b[k] - a[k]);
+        }
+    }
+    return truth;
 }
 
 using test::renderSettled;
@@ -53,66 +82,80 @@ TEST_P(SettledPicture, SphereShowsTheExactLobeAtThePixelsItMarksExact) {
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     ASSERT_NE(renderer, nullptr) << error;
-    MIPGLOSS_REQUIRE_ASSET(test::asset("env/sunrise.exr"));
-    const auto env = sunrise(128);
+    MIPGLOSS_REQUIRE_ASSET(test::asset(std::string("env/") + param.map));
+    const auto env = environmentOf(param.map, 256);
+    constexpr int kSize = 512;
     Material material;
     material.lambda = static_cast<float>(exponentToLambda(param.exponent));
     material.mode = param.mode;
+    const double meant = lambdaToExponent(material.lambda);
     const Scene scene = test::sphereScene(material);
-    const SettledRender r = renderSettled(*renderer, scene, env, param.size);
-    ASSERT_EQ(r.aov.width, param.size);
+    const SettledRender r = renderSettled(*renderer, scene, env, kSize);
+    ASSERT_EQ(r.aov.width, kSize);
     ASSERT_EQ(r.hdr.size(), r.aov.exact.size());
 
     std::vector<glm::vec3> directions;
+    std::vector<double> exponents;
     std::vector<Rgb> shown;
-    int objectPixels = 0;
+    int objectPixels = 0, widened = 0;
     for (std::size_t i = 0; i < r.aov.exact.size(); ++i) {
         if (r.aov.exponent[i] == 0.0f) continue;
         ++objectPixels;
-        // The AOV names the lobe the pixel shows: the material's.
-        EXPECT_NEAR(r.aov.exponent[i], lambdaToExponent(material.lambda), 1e-4 * param.exponent) << i;
+        // The AOV names the lobe the pixel shows: the material's, widened by the footprint, never sharper.
+        EXPECT_LE(r.aov.exponent[i], meant * (1.0 + 1e-5)) << i;
+        if (r.aov.exponent[i] < 0.99 * meant) ++widened;
         if (r.aov.exact[i] != 1.0f) continue;
         directions.push_back(r.aov.direction[i]);
+        exponents.push_back(r.aov.exponent[i]);
         shown.push_back(Rgb(r.hdr[i]));
     }
-    ASSERT_GT(objectPixels, param.size * param.size / 8) << "the sphere fills the picture";
+    ASSERT_GT(objectPixels, kSize * kSize / 8) << "the sphere fills the picture";
     const double markedFraction = static_cast<double>(directions.size()) / objectPixels;
     // The truth costs a sum over the base per direction: every k-th marked pixel, at most 3000.
     const std::size_t stride = std::max<std::size_t>(1, directions.size() / 3000);
     std::vector<glm::vec3> sampledDirections;
+    std::vector<double> sampledExponents;
     std::vector<Rgb> sampledShown;
     for (std::size_t i = 0; i < directions.size(); i += stride) {
         sampledDirections.push_back(directions[i]);
+        sampledExponents.push_back(exponents[i]);
         sampledShown.push_back(shown[i]);
     }
-    directions.swap(sampledDirections);
-    shown.swap(sampledShown);
-    const std::vector<Rgb> truth = referenceLobeAt(*env->base, lambdaToExponent(material.lambda), directions);
-    const double readError = relativeRms(shown, truth);
+    const std::vector<Rgb> truth = truthAt(*env->base, sampledExponents, sampledDirections);
+    const double readError = relativeRms(sampledShown, truth);
     double worst = 0.0;
-    for (std::size_t i = 0; i < shown.size(); ++i)
-        worst = std::max(worst, static_cast<double>(glm::length(shown[i] - truth[i]) / std::max(glm::length(truth[i]), 1e-6f)));
-    std::printf("[ SettledPicture ] %s: %d object pixels, %.0f %% marked exact, relative RMS %.2f %%, worst pixel %.1f %%\n",
-                param.name, objectPixels, 100.0 * markedFraction, 100.0 * readError, 100.0 * worst);
-    // Within 2 % where marked. The mark is the level the GPU really reads (docs/exact-mask.md):
-    // where a pixel's footprint covers several texels of the lobe cube (n128 at 384², n1024 at
-    // 1024²: 36 % and 32 % of the sphere is read at its base level alone) the rest is not marked.
-    // Half was asked for when textureQueryLod decided the mark, which claimed base-level reads
-    // that were not; issue 24's footprint-widened lobes are what will mark the rest.
-    EXPECT_GE(markedFraction, 0.3) << param.name;
+    for (std::size_t i = 0; i < sampledShown.size(); ++i)
+        worst = std::max(worst, static_cast<double>(glm::length(sampledShown[i] - truth[i]) /
+                                                    std::max(glm::length(truth[i]), 1e-6f)));
+    std::printf("[ SettledPicture ] %s: %d object pixels, %.1f %% marked exact, %.1f %% widened > 1 %%, "
+                "relative RMS %.2f %%, worst pixel %.1f %%\n",
+                param.name, objectPixels, 100.0 * markedFraction, 100.0 * widened / objectPixels, 100.0 * readError,
+                100.0 * worst);
+    // Issue 24: within 2 % where marked, and at least 80 % of the sphere marked.
+    EXPECT_GE(markedFraction, 0.8) << param.name;
     EXPECT_LE(readError, 0.02) << param.name;
 }
 
+// n on an entry (2, 16, 128, 1024, 4096 round to λ = j/8 only approximately: each is between two)
+// and half way between entries (λ = (j + ½)/8); interior.exr has a sun through its window,
+// courtyard.exr none.
 INSTANTIATE_TEST_SUITE_P(Lobes, SettledPicture,
-                         ::testing::Values(PictureCase{"n2", 2.0, LookupMode::Reflect, 256},
-                                           PictureCase{"n16", 16.0, LookupMode::Reflect, 256},
-                                           PictureCase{"n128", 128.0, LookupMode::Reflect, 384},
-                                           PictureCase{"n1024", 1024.0, LookupMode::Reflect, 1024},
-                                           PictureCase{"normal_n1", 1.0, LookupMode::Normal, 256}),
+                         ::testing::Values(PictureCase{"interior_n2", "interior.exr", 2.0, LookupMode::Reflect},
+                                           PictureCase{"interior_n16", "interior.exr", 16.0, LookupMode::Reflect},
+                                           PictureCase{"interior_n128", "interior.exr", 128.0, LookupMode::Reflect},
+                                           PictureCase{"interior_n1024", "interior.exr", 1024.0, LookupMode::Reflect},
+                                           PictureCase{"interior_n4096", "interior.exr", 4096.0, LookupMode::Reflect},
+                                           PictureCase{"interior_half_step_n497", "interior.exr", 496.986, LookupMode::Reflect},
+                                           PictureCase{"interior_normal_n1", "interior.exr", 1.0, LookupMode::Normal},
+                                           PictureCase{"courtyard_n2", "courtyard.exr", 2.0, LookupMode::Reflect},
+                                           PictureCase{"courtyard_n128", "courtyard.exr", 128.0, LookupMode::Reflect},
+                                           PictureCase{"courtyard_n1024", "courtyard.exr", 1024.0, LookupMode::Reflect},
+                                           PictureCase{"courtyard_n4096", "courtyard.exr", 4096.0, LookupMode::Reflect},
+                                           PictureCase{"courtyard_half_step_n36", "courtyard.exr", 36.0131, LookupMode::Reflect}),
                          [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 // λ means one lobe: the same material under the same lat-long imported at 128² and at 512²
-// shows the same picture (each from its own lobe cube of the same size).
+// shows the same picture (each from its own stack entries of the same size).
 TEST(SettledPicture, LambdaFourLooksTheSameAtFaceSizes128And512) {
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);

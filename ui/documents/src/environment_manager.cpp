@@ -56,46 +56,67 @@ void EnvironmentManager::startLobeJob() {
     // Lobes of an environment that is no longer current go.
     const auto stale = std::erase_if(lobes_, [&](const auto& entry) { return entry.second->filter != current_->filter; });
     if (stale > 0) emit lobesReady();
-    const std::vector<int> inUse = lobesInUse(document_->scene());
+    // The stack's entries the scene shows come first, in one job; then those a slider reaches
+    // next (within a level of them), one per job, so moving λ again loses at most one.
+    const int baseSize = current_->filter->baseSize();
+    const std::vector<int> inUse = lobesInUse(document_->scene(), baseSize);
+    const std::vector<int> near = lobesNear(document_->scene(), baseSize);
     std::vector<int> missing;
-    for (int key : inUse)
-        if (!lobes_.count(key)) missing.push_back(key);
-    // Keep what is in use and up to 8 others (a slider going back and forth), drop the rest.
-    if (lobes_.size() > inUse.size() + 8) {
-        for (auto it = lobes_.begin(); it != lobes_.end() && lobes_.size() > inUse.size() + 8;)
-            it = std::find(inUse.begin(), inUse.end(), it->first) == inUse.end() ? lobes_.erase(it) : std::next(it);
-        emit lobesReady();
+    for (int index : inUse)
+        if (!lobes_.count(index)) missing.push_back(index);
+    const bool forInUse = !missing.empty();
+    if (!forInUse) {
+        if (lobeJob_) return;  // an entry near them is being made; its end starts the next
+        for (int index : near)
+            if (!lobes_.count(index)) {
+                missing.push_back(index);
+                break;
+            }
+    } else if (lobeJob_) {
+        lobeJob_->cancel();  // a near entry's job: what is in use goes first
     }
+    // Keep what is in use or near it, drop the rest.
+    const auto dropped = std::erase_if(lobes_, [&](const auto& entry) {
+        return std::find(inUse.begin(), inUse.end(), entry.first) == inUse.end() &&
+               std::find(near.begin(), near.end(), entry.first) == near.end();
+    });
+    if (dropped > 0) emit lobesReady();
     if (missing.empty()) return;
-    lobeBusy_ = true;
-    emit busyChanged(true);
+    // Only the entries in use make the manager busy (the picture is not settled without them);
+    // those near them are made quietly behind.
+    if (forInUse) {
+        lobeBusy_ = true;
+        emit busyChanged(true);
+    }
     const std::shared_ptr<const PreparedEnvironment> environment = current_;
     lobeJob_ = worker_->start(
         [environment, missing](Job& job) {
             std::vector<std::shared_ptr<const LobeCube>> made;
             try {
-                for (int key : missing) {
+                for (int index : missing) {
                     if (job.cancelled()) break;
-                    made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, key)));
+                    made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, index)));
                 }
             } catch (const std::exception& e) {
-                std::cerr << "mipgloss: lobe cube: " << e.what() << '\n';
+                std::cerr << "mipgloss: lobe stack entry: " << e.what() << '\n';
             }
             return made;
         },
-        [this](JobOutcome<std::vector<std::shared_ptr<const LobeCube>>>&& outcome, const Job& job) {
-            lobeBusy_ = false;
+        [this, forInUse](JobOutcome<std::vector<std::shared_ptr<const LobeCube>>>&& outcome, const Job& job) {
+            if (forInUse) lobeBusy_ = false;
             if (lobeJob_.get() == &job) lobeJob_.reset();
             // Only lobes of the environment still current are kept.
             bool changed = false;
             for (const auto& lobe : outcome.value.value_or(std::vector<std::shared_ptr<const LobeCube>>{}))
                 if (current_ && lobe->filter == current_->filter) {
-                    lobes_[lobe->key] = lobe;
+                    lobes_[lobe->index] = lobe;
                     ++counters_.lobeBuilds;
                     changed = true;
                 }
             if (changed) emit lobesReady();
-            if (lobesWanted_ && !busy_) startLobeJob();
+            // Then the next entry (startLobeJob returns when none is missing), unless λ is moving
+            // (the settle timer starts it when it rests).
+            if (!busy_ && !lobeJob_ && !settle_->isActive() && (lobesWanted_ || !job.cancelled())) startLobeJob();
             if (!busy()) emit busyChanged(false);
         });
 }

@@ -1,43 +1,113 @@
-// The settled picture: once a material's λ rests, the object is drawn from a cube that holds its
-// own lobe exactly (builders.h, lobeCubeSize: σ ≈ 3.6 texels, so bilinear reads between its
-// centres stay within about 1 %), instead of the chain's blend of two levels whose lobes are 4×
-// apart (10–58 % off it at half levels, measured by mipgloss bench, docs/chain-schedule.md). One cube per distinct lobe in use,
-// made only for lobes the scene shows. Pure C++: the window makes them on its worker, `render`
-// directly.
+// The lobe stack: exact normalized Phong lobes of the environment at λ = j/8 (j = 1 … 63), so
+// neighbouring lobes are 2^¼ apart in exponent (phong.h: n ∝ 4^−λ). Any lobe n between two
+// entries is read as the blend of its neighbours with the weight that gives the blend the lobe's
+// mean cosine (band 1, as chainLevelForExponent does for the chain's 4× steps): 0.2–0.5 % off the
+// lobe on held-out maps where the chain's 4× steps are 10–58 % off (docs/lobe-stack.md). So any
+// λ, per object or per fragment, reads its own lobe the moment it changes, with no settle step.
+//
+// Each entry is a cube of face lobeCubeSize(n) (builders.h: σ ≈ 3.6 texels, so bilinear reads
+// between its centres stay within about 1 %) and is read at its base level only: the renderer
+// packs the entries into one 2D atlas, each face with its one-texel border (lobeStackAtlas), and a
+// fragment whose footprint is wider than its lobe reads the wider lobe the footprint makes
+// (docs/lobe-stack.md), never a box mip. Entries are made only for the lobes the scene shows
+// (lobesInUse) and, in the window, those a slider will reach next (lobesNear). Pure C++: the
+// window makes them on its worker, `render` directly.
 #pragma once
 
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/scene.h"
 
+#include <glm/vec3.hpp>
+
+#include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace mipgloss {
 
-// A material's λ as a lobe key: λ within 1/1024 share a lobe (as they share a sampler).
-int lobeKey(float lambda);
+// Entries per chain level (λ unit): 8, so neighbours are 4^(1/8) = 2^¼ apart in exponent.
+inline constexpr int kStackStepsPerLevel = 8;
+// Entry indices run 1 … kStackLast; entry kStackLast (λ = 7.875) is n = 0, the uniform hemisphere
+// (n(λ) reaches 0 at λ = 7.79). Index 0 (λ = 0) would be the mirror, which the chain's level 0 holds.
+inline constexpr int kStackLast = 63;
+inline constexpr int kStackSlots = kStackLast + 1;  // uniform array length in the shaders
+
+double stackLambda(int index);    // index / 8
+double stackExponent(int index);  // lambdaToExponent(index / 8)
+// The sharpest entry a base of face N makes: the first whose lobe its cube holds at full width
+// (lobeCubeHoldsLobe: √(32 n) ≤ min(2N, 1024)). Lobes sharper than it (and the mirror) are read
+// from the chain.
+int stackTop(int baseSize);
+
+// Lobe n as mix(entry[sharper], entry[wider], widerWeight). With u = 1/(n + 2) = 1 − Λ(n) (the
+// lobe's mean cosine is Λ = (n+1)/(n+2)), the weight is (u − u_sharper) / (u_wider − u_sharper),
+// so the blend has n's mean cosine. None for n above stackExponent(stackTop), for ∞ and for NaN.
+struct StackBlend {
+    int sharper = 0;
+    int wider = 0;
+    double widerWeight = 0.0;
+};
+std::optional<StackBlend> stackBlend(double exponent, int baseSize);
+
+// The lobe a pixel shows when its lookup direction spans the footprint dx, dy (the direction's
+// change to the next pixel across and down, radians): the lobe's mean of 1 − cos θ plus the
+// footprint's, u = 1/(n+2) + (|dx|² + |dy|²)/24 (a box of sides dx, dy has second moment
+// (|dx|² + |dy|²)/12 and 1 − cos θ ≈ θ²/2), n' = 1/u − 2. The same formula is in lobe_stack.glsl.
+double footprintExponent(double exponent, double dx, double dy);
 
 struct LobeCube {
-    int key = 0;              // lobeKey of the λ it was made for
-    double exponent = 0.0;    // the lobe it holds, lambdaToExponent(λ)
-    bool holdsLobe = false;   // σ is at least 3.6 of its texels (lobeCubeHoldsLobe): exact reads
+    int index = 0;            // the stack entry (λ = index / 8)
+    double exponent = 0.0;    // the lobe it holds, stackExponent(index)
     std::shared_ptr<const CubeMap> cube;
     std::shared_ptr<const PhongFilter> filter;  // the environment it was made from
 };
 
-// The lobes the scene shows that the chain cannot show exactly: the λ of every visible object
-// (not a mirror, not using the irradiance map) and of the background when shown and blurred,
-// one per key, in ascending key order. Empty when the environment's builder is not the default
-// (the other builders are there to be compared as they are).
-std::vector<int> lobesInUse(const Scene& scene);
+// How many entries past a lobe's wider neighbour the scene asks for, for pixels whose footprint
+// widens the lobe (footprintExponent): 4, half a level, holds lobes down to 2^(−5/4) ≈ 0.42 of n.
+// Pixels widened further read the chain (and the AOV does not call them exact). On a 512² sphere
+// at n = 1024, 94 % of the pixels are widened by more than 1 % (test_settled_picture.cpp).
+inline constexpr int kFootprintReach = 4;
 
-// The lobe cube for `key` (λ = key / 1024) from the environment's filter. The environment must
-// have been prepared with the default builder (filter set). Throws Cancelled if asked.
-LobeCube makeLobeCube(const PreparedEnvironment& environment, int key);
+// The entries the scene shows, ascending: for the λ of every visible object (not a mirror, not
+// using the irradiance map) and of the background when shown and blurred, the two entries its
+// lobe blends and kFootprintReach wider ones; for an object with the grazing option every entry
+// from stackTop to its own λ's and those.
+// Empty when the environment's builder is not the default (the other builders are there to be
+// compared as they are). `baseSize`: the environment's face size.
+std::vector<int> lobesInUse(const Scene& scene, int baseSize);
+// The entries within `reach` steps of those in use and not in use, nearest first: what the window
+// makes after the lobes in use, so a slider moving within a level reads exact lobes at once.
+std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach = kStackStepsPerLevel);
 
-// Every lobe cube the scene shows (lobesInUse), made now: the settled picture in one call, for
-// `mipgloss render` and the tests (the window makes them one by one on its worker). Empty when
-// the environment has no filter.
+// Entry `index` from the environment's filter. The environment must have been prepared with the
+// default builder (filter set). Throws Cancelled if asked.
+LobeCube makeLobeCube(const PreparedEnvironment& environment, int index);
+
+// Every entry the scene shows (lobesInUse), made now, for `mipgloss render` and the tests (the
+// window makes them on its worker). Empty when the environment has no filter.
 std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene);
+
+// Lobe n at `direction` as the renderer reads it from these entries: each entry bilinear between
+// its face's texel centres (CubeMap::sample), the neighbours blended by stackBlend. The CPU twin
+// of lobe_stack.glsl's stackRead, for tests and the bench; empty when an entry it needs is missing.
+std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeCube>>& entries, double exponent,
+                                 int baseSize, const glm::vec3& direction);
+
+// Where the renderer's 2D atlas holds each entry: a block of 3 × 2 faces, each face (size + 2)²
+// texels with its border, face f at column f % 3 and row f / 3 of the block; blocks shelf-packed,
+// largest first, in rows no wider than `maxWidth` (or the widest block).
+struct AtlasPlacement {
+    int index = 0;
+    int size = 0;  // face size without border
+    int x = 0, y = 0;  // the block's first texel
+};
+struct LobeStackAtlas {
+    int width = 0, height = 0;
+    std::vector<AtlasPlacement> placed;  // one per entry given, in the order given
+    double megabytes(int bytesPerTexel) const { return static_cast<double>(width) * height * bytesPerTexel / 1e6; }
+};
+// `entries`: (index, face size) pairs.
+LobeStackAtlas lobeStackAtlas(const std::vector<std::pair<int, int>>& entries, int maxWidth = 4096);
 
 }  // namespace mipgloss

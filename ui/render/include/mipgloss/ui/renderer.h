@@ -3,12 +3,12 @@
 //
 // The paper's method (Ashikhmin & Ghosh 2002, §4): the environment is one cube texture holding the
 // chain's read levels (GL_TEXTURE_MAX_LEVEL = lastReadLevel), trilinear filtering,
-// GL_TEXTURE_CUBE_MAP_SEAMLESS on. A material's λ means one Phong lobe n(λ) (phong.h); while it
-// moves, the object reads the chain at the level standing in for that lobe, held as a sampler
-// object's GL_TEXTURE_MIN_LOD, so the GPU picks max(level, footprint LOD): a far, small object
-// still gets the extra blur mipmapping gives it. Samplers are shared by materials with the same
-// level; changing λ picks a sampler, nothing is rebuilt. Once λ rests and the material's lobe
-// cube has arrived (setLobes), the object reads that instead: the exact lobe (lobes.h).
+// GL_TEXTURE_CUBE_MAP_SEAMLESS on. A material's λ means one Phong lobe n(λ) (phong.h). Where the
+// lobe stack holds that lobe (setLobes; lobes.h, lobe_stack.glsl) every fragment reads it exactly,
+// widened by its own footprint, at any λ, the moment λ changes. Where the stack does not hold it
+// yet, the object reads the chain at the level standing in for that lobe, held as a sampler
+// object's GL_TEXTURE_MIN_LOD, so the GPU picks max(level, footprint LOD). Samplers are shared by
+// materials with the same level; changing λ picks a sampler, nothing is rebuilt.
 //
 // Frame: objects and background into a multisampled RGBA32F target (linear HDR at any scale,
 // docs/radiance-range.md), resolved, then one pass applies exposure, the tone map and the sRGB
@@ -40,9 +40,10 @@ struct RenderCounters {
     std::uint64_t objectsDrawn = 0;       // in the last frame
     std::uint64_t objectsCulled = 0;      // in the last frame (outside the view frustum)
     std::uint64_t drawCalls = 0;          // in the last frame
-    std::uint64_t lobeUploads = 0;        // lobe cubes sent to the GPU
-    std::uint64_t lobesResident = 0;      // lobe cubes on the GPU now
-    std::uint64_t objectsSettled = 0;     // in the last frame: drawn from their own lobe cube
+    std::uint64_t lobeUploads = 0;        // lobe stack entries sent to the GPU (a new set sends all again)
+    std::uint64_t lobesResident = 0;      // lobe stack entries on the GPU now
+    std::uint64_t stackBytes = 0;         // the lobe stack's atlas on the GPU (RGB32F)
+    std::uint64_t objectsSettled = 0;     // in the last frame: every lobe read from the lobe stack
     std::uint64_t objectsFromChain = 0;   // in the last frame: blurred, read from the chain
 };
 
@@ -100,9 +101,9 @@ public:
     void setEnvironment(const std::shared_ptr<const PreparedEnvironment>& environment);
     bool hasEnvironment() const;
 
-    // The lobe cubes to draw settled materials from (lobes.h): replaces the previous set; cubes
-    // already on the GPU stay, others are uploaded, missing ones are freed. Cubes made from
-    // another environment than the current one are ignored.
+    // The lobe stack's entries (lobes.h): replaces the previous set (the atlas is packed and sent
+    // again when the set changes). Entries made from another environment than the current one
+    // are not read.
     void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
 
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.

@@ -1,0 +1,86 @@
+// The lobe stack (core/scene/lobes.h, docs/lobe-stack.md): exact Phong lobes at λ = j/8, packed in
+// one 2D atlas, each face with its one-texel border, read at their base level only. Any lobe n
+// (per object or per fragment) is the blend of its two neighbours with the weight that keeps its
+// mean cosine (stackBlend in lobes.h); a fragment whose footprint is wider than its lobe reads
+// the wider lobe the footprint makes (footprintExponent). Included by object.frag, aov.frag and
+// background.frag.
+uniform sampler2D uStack;                   // unit 2: the atlas, linear, no mips
+uniform vec4 uStackEntry[STACK_SLOTS];      // per entry: block origin x, y (texels), face size, 1 when present
+uniform float uStackExponent[STACK_SLOTS];  // per entry: its exponent (−1 when absent)
+uniform int uStackTop;                      // the sharpest entry (lobes.h, stackTop)
+
+// Face and (s, t) of a direction, by the major axis as the OpenGL specification's cube map table
+// gives them (§8.13; core/ibl/cubemap.h, directionToFace, follows the same table).
+vec2 cubeFaceCoord(vec3 d, out int face) {
+    vec3 a = abs(d);
+    float sc, tc, ma;
+    if (a.x >= a.y && a.x >= a.z) {
+        ma = a.x; face = d.x >= 0.0 ? 0 : 1; sc = d.x >= 0.0 ? -d.z : d.z; tc = -d.y;
+    } else if (a.y >= a.z) {
+        ma = a.y; face = d.y >= 0.0 ? 2 : 3; sc = d.x; tc = d.y >= 0.0 ? d.z : -d.z;
+    } else {
+        ma = a.z; face = d.z >= 0.0 ? 4 : 5; sc = d.z >= 0.0 ? d.x : -d.x; tc = -d.y;
+    }
+    return 0.5 * (vec2(sc, tc) / ma + 1.0);
+}
+
+// Entry j at direction d: bilinear between its face's texel centres, across the face edge
+// through the border (which holds the lobe on the face's extended plane).
+vec3 stackEntryAt(int j, vec3 d) {
+    int face;
+    vec2 st = cubeFaceCoord(d, face);
+    vec4 e = uStackEntry[j];
+    float stride = e.z + 2.0;
+    vec2 texel = e.xy + vec2(float(face % 3), float(face / 3)) * stride + 1.0 + st * e.z;
+    return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb;
+}
+
+// λ(n) = log2(128·√3) − ½·log2(n + 1) (phong.h), for finding n's neighbours.
+float stackLambdaOf(float n) { return 0.5 * log2(LAMBDA_EXPONENT_SCALE) - 0.5 * log2(n + 1.0); }
+
+// n's neighbours and the wider one's weight; false when the stack does not hold both (n sharper
+// than its top entry, or an entry not yet made).
+bool stackBlendOf(float n, out int sharper, out float weight) {
+    sharper = 0;
+    weight = 0.0;
+    if (!(n >= 0.0) || isinf(n) || n > uStackExponent[uStackTop]) return false;
+    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
+    if (j > uStackTop && uStackExponent[j] < n) --j;
+    if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
+    int wider = min(j + 1, STACK_LAST);
+    float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[j] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
+    weight = u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+    // Float rounding at an entry: a weight within 1e-4 of 0 or 1 reads that entry alone, so a
+    // lobe on an entry never needs the neighbour the C++ side did not ask for.
+    if (weight > 0.9999) {
+        j = wider;
+        weight = 0.0;
+    }
+    if (weight < 1e-4) weight = 0.0;
+    sharper = j;
+    return uStackEntry[j].w > 0.5 && (weight == 0.0 || uStackEntry[min(j + 1, STACK_LAST)].w > 0.5);
+}
+
+bool stackHolds(float n) {
+    int j;
+    float w;
+    return stackBlendOf(n, j, w);
+}
+
+vec3 stackRead(vec3 d, float n) {
+    int j;
+    float w;
+    stackBlendOf(n, j, w);
+    vec3 sharp = stackEntryAt(j, d);
+    return w > 0.0 ? mix(sharp, stackEntryAt(min(j + 1, STACK_LAST), d), w) : sharp;
+}
+
+// The lobe a pixel shows when its unit lookup direction changes by dx, dy to the next pixels
+// (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + (|dx|² + |dy|²)/24.
+float footprintExponent(float n, vec3 dx, vec3 dy) {
+    float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + (dot(dx, dx) + dot(dy, dy)) / 24.0;
+    return u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+}
+
+// n(λ) = 3·128²·4^−λ − 1 clamped at 0 (phong.h), for a λ > 0 made per fragment.
+float grazingExponent(float lambda) { return max(LAMBDA_EXPONENT_SCALE * exp2(-2.0 * lambda) - 1.0, 0.0); }
