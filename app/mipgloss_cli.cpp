@@ -8,6 +8,7 @@
 #include "mipgloss/ibl/phong.h"
 
 #include "bench_import.h"
+#include "bench_stack.h"
 #include "cli_args.h"
 
 #ifdef MIPGLOSS_WITH_UI
@@ -50,6 +51,7 @@ usage:
   mipgloss bench [--env FILE]... [--sizes 128,256,512] [--builders a,b,...]
                  [--repeat R] [--directions D] [--no-half] [--no-centre] [--shortcuts] [--plot FILE.svg]
   mipgloss bench import [--env FILE] [--widths 2048,8192,16384] [--faces 256,512,1024] [--dir DIR]
+  mipgloss bench stack [--env FILE]... [--sizes 128,256] [--directions D] [--first-level L]
   mipgloss --help | --version
 
 bake: builds the mip chain of an environment and writes, with --format exr (the default),
@@ -584,7 +586,7 @@ int main(int argc, char** argv) {
         }
         const std::string cmd = argv[1];
         if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-            std::cout << kUsage << app::kImportBenchUsage;
+            std::cout << kUsage << app::kImportBenchUsage << app::kStackBenchUsage;
 #ifdef MIPGLOSS_WITH_UI
             std::cout << app::kRenderUsage << app::kLibraryUsage;
 #endif
@@ -597,6 +599,8 @@ int main(int argc, char** argv) {
         if (cmd == "bake") return runBake(Args(argc, argv, 2));
         if (cmd == "bench" && argc > 2 && std::string(argv[2]) == "import")
             return app::runImportBench(Args(argc, argv, 3));
+        if (cmd == "bench" && argc > 2 && std::string(argv[2]) == "stack")
+            return app::runStackBench(Args(argc, argv, 3));
         if (cmd == "bench") return runBench(Args(argc, argv, 2));
 #ifdef MIPGLOSS_WITH_UI
         if (cmd == "render") return app::runRender(Args(argc, argv, 2), argv[0]);

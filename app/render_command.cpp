@@ -109,10 +109,12 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  read), X.exponent (its lobe; 1 for diffuse) and X.weight.R/G/B (what its lobe is
                  multiplied by), and NdotV; a pixel marked exact is then Σ weight ⊙ lobe(dir),
                  and the single-lobe channels describe its specular layer
-  The picture is the settled one: every material's own lobe cube is made first.
-  --no-settle    the picture the window shows while a slider moves instead: no lobe cube, every
-                 glossy lobe read from the chain's levels (the instant path; its AOV marks only
-                 mirrors and the irradiance map exact), so that path can be checked from outside
+  The picture is the settled one: the lobe stack's entries every lobe in use reads (exact lobes
+                 2^(1/4) apart, blended; each pixel's lobe widened by its footprint) are made first.
+  --no-settle    the picture the window shows before those entries arrive instead: every glossy
+                 lobe read from the chain's levels (its AOV marks only mirrors and the irradiance
+                 map exact), so that path can be checked from outside. While a slider moves the
+                 window reads the stack, as the settled picture does, once its entries are made
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
@@ -473,7 +475,7 @@ int runRender(Args args, const char* argv0) {
         return view.camera;
     };
 
-    // The settled picture: each lobe in use from its own cube. Made once: turning the view
+    // The settled picture: each lobe in use from the lobe stack. Made once: turning the view
     // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
     const std::vector<std::shared_ptr<const LobeCube>> lobes =
@@ -491,7 +493,8 @@ int runRender(Args args, const char* argv0) {
                   << builderName(environment->settings.builder) << " filtered through level "
                   << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
                   << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
-                  << " lobe cube(s) made in " << lobeSeconds << " s (" << c.objectsSettled
+                  << " lobe stack entries made in " << lobeSeconds << " s (" << static_cast<double>(c.stackBytes) / 1e6
+                  << " MB on the GPU; " << c.objectsSettled
                   << " objects settled), environment prepared in " << prepareSeconds << " s" << extra << "; "
                   << renderer.glDescription() << '\n';
     };
@@ -525,7 +528,7 @@ int runRender(Args args, const char* argv0) {
     std::ostringstream extra;
     if (compare) {
         // The right half: the same scene and camera, the environment built the other way (or
-        // from the other file) at the same face size, its own lobe cubes made for it.
+        // from the other file) at the same face size, its own lobe stack made for it.
         EnvironmentSettings other = scene.environment;
         if (compareBuilder) other.builder = *compareBuilder;
         if (compareEnv) other.source = compareEnv->string();
@@ -541,7 +544,7 @@ int runRender(Args args, const char* argv0) {
         picture = besideEachOther(std::move(picture), draw(renderer, scene, view, otherEnvironment, width, height,
                                                            linear, *outPath));
         extra << "; right half: environment " << (compareEnv ? compareEnv->string() : other.source) << " "
-              << builderName(other.builder) << ", prepared with its lobe cubes in " << otherSeconds << " s";
+              << builderName(other.builder) << ", prepared with its lobe stack in " << otherSeconds << " s";
     }
     writePicture(picture, *outPath);
     if (spin) extra << "; " << turntableSpinName(spinKind) << " spin " << *spin << "°";

@@ -45,14 +45,16 @@ bool baseOnly(samplerCube cube, vec3 direction) {
 
 // What one lobe lookup shows, as object.frag's readLobe makes it: the exponent, and whether the
 // value is that lobe at that direction. Stack reads are exact (base level, the exact lobe widened
-// by the footprint, which is the exponent reported); a mirror read is exact where the GPU reads
-// the mirror's base level; the chain standing in for a glossy lobe never is.
+// by the footprint, which is the exponent reported) unless the footprint would widen the lobe past
+// what the stack holds for it; a mirror read is exact where the GPU reads the mirror's base
+// level; the chain standing in for a glossy lobe never is.
 bool lobeRead(bool useStack, float n, vec3 d, vec3 dx, vec3 dy, samplerCube chain, out float shown) {
-    float widened = footprintExponent(n, dx, dy);
+    bool complete;
+    float widened = footprintLimitedExponent(n, dx, dy, complete);
     bool fromStack = useStack && stackHolds(widened);
     bool mirrorBase = isinf(n) && baseOnly(chain, d);
     shown = fromStack ? widened : n;
-    return fromStack || mirrorBase;
+    return (fromStack && complete) || mirrorBase;
 }
 
 void main() {

@@ -18,7 +18,8 @@ layout(location = 0) out vec4 fragColour;
 void main() {
     vec4 p = uInverseViewProjection * vec4(vNdc, 1.0, 1.0);
     vec3 direction = normalize(uEnvironmentRotation * normalize(p.xyz / p.w));
-    float shown = footprintExponent(uExponent, dFdx(direction), dFdy(direction));
+    bool complete;
+    float shown = footprintLimitedExponent(uExponent, dFdx(direction), dFdy(direction), complete);
     vec3 colour = uUseStack && stackHolds(shown) ? stackRead(direction, shown)
                                                  : textureLod(uEnvironment, direction, uLod).rgb;
     fragColour = vec4(colour, 1.0);

@@ -82,5 +82,25 @@ float footprintExponent(float n, vec3 dx, vec3 dy) {
     return u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
 }
 
+// Lobe n (held by the stack) widened by the footprint, but never past the widest entry the scene
+// asks the stack for on n's behalf (lobes.h, kFootprintReach entries past n's wider neighbour):
+// so the picture does not depend on which other entries happen to be made. `complete` is false
+// where the footprint would widen it further (the pixel then shows a lobe sharper than its
+// footprint, and the AOV does not call it exact).
+float footprintLimitedExponent(float n, vec3 dx, vec3 dy, out bool complete) {
+    float shown = footprintExponent(n, dx, dy);
+    complete = true;
+    if (!(n >= 0.0) || isinf(n) || n > uStackExponent[uStackTop]) return shown;
+    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
+    if (j > uStackTop && uStackExponent[j] < n) --j;
+    if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
+    float widest = uStackExponent[min(j + 1 + STACK_FOOTPRINT_REACH, STACK_LAST)];
+    if (shown < widest) {
+        complete = shown >= widest * 0.999;
+        shown = widest;
+    }
+    return shown;
+}
+
 // n(λ) = 3·128²·4^−λ − 1 clamped at 0 (phong.h), for a λ > 0 made per fragment.
 float grazingExponent(float lambda) { return max(LAMBDA_EXPONENT_SCALE * exp2(-2.0 * lambda) - 1.0, 0.0); }

@@ -38,7 +38,8 @@ uniform float uCoatExponent;
 // as this branch is not uniform across fragments).
 vec3 readLobe(samplerCube chain, bool useStack, float n, vec3 d, vec3 dx, vec3 dy) {
     if (useStack) {
-        float shown = footprintExponent(n, dx, dy);
+        bool complete;
+        float shown = footprintLimitedExponent(n, dx, dy, complete);
         if (stackHolds(shown)) return stackRead(d, shown);
     }
     return textureGrad(chain, d, dx, dy).rgb;
@@ -79,7 +80,8 @@ void main() {
         // chain at its level, with the hardware's footprint LOD kept.
         float cosTheta = clamp(dot(n, v), 0.0, 1.0);
         float lambda = uLambda * (1.0 - pow(1.0 - cosTheta, 5.0));
-        float shown = footprintExponent(grazingExponent(lambda), ddx, ddy);
+        bool complete;
+        float shown = footprintLimitedExponent(grazingExponent(lambda), ddx, ddy, complete);
         float level = lambda > 0.0 ? clamp(lambda + uLevelOffset, 0.0, uLastLevel) : 0.0;
         float footprint = textureQueryLod(uEnvironment, direction).y;
         if (uUseStack && lambda > 0.0 && stackHolds(shown))

@@ -75,6 +75,7 @@ std::string shaderDefines() {
     define("STACK_SLOTS", kStackSlots);
     define("STACK_STEPS_PER_LEVEL", kStackStepsPerLevel);
     define("STACK_LAST", kStackLast);
+    define("STACK_FOOTPRINT_REACH", kFootprintReach);
     defineFloat("LAMBDA_EXPONENT_SCALE", 3.0 * kLambdaReferenceSize * kLambdaReferenceSize);
     return text;
 }

@@ -212,6 +212,7 @@ TEST(RenderCommand, LinearExrAndAovLetAnyoneCheckThePicture) {
     options.faceSize = 64;
     const CubeMap base = loadEnvironment(test::asset("env/sunrise.exr"), options).cube;
     std::vector<glm::vec3> directions;
+    std::vector<double> exponents;
     std::vector<Rgb> shown;
     int object = 0;
     for (int y = 0; y < account.height; ++y)
@@ -219,26 +220,29 @@ TEST(RenderCommand, LinearExrAndAovLetAnyoneCheckThePicture) {
             const float exponent = account.at(x, y, "exponent");
             if (exponent == 0.0f) continue;
             ++object;
-            EXPECT_NEAR(exponent, 16.0f, 1e-3f) << x << "," << y;
+            // The lobe the pixel shows: n = 16 widened by its footprint (lobe_stack.glsl), never sharper.
+            EXPECT_LE(exponent, 16.0f * (1.0f + 1e-5f)) << x << "," << y;
+            EXPECT_GT(exponent, 0.0f) << x << "," << y;
             const glm::vec3 d(account.at(x, y, "dirX"), account.at(x, y, "dirY"), account.at(x, y, "dirZ"));
             EXPECT_NEAR(glm::length(d), 1.0f, 1e-4f);
             if (account.at(x, y, "exact") != 1.0f) continue;
             directions.push_back(d);
+            exponents.push_back(exponent);
             shown.push_back(Rgb(picture.at(x, y, "R"), picture.at(x, y, "G"), picture.at(x, y, "B")));
         }
     ASSERT_GT(object, 192 * 192 / 8);
-    EXPECT_GE(static_cast<double>(directions.size()) / object, 0.5) << "at least half the object marked exact";
-    const double error = relativeRms(shown, referenceLobeAt(base, 16.0, directions));
+    EXPECT_GE(static_cast<double>(directions.size()) / object, 0.8) << "issue 24: at least 80 % of the object marked exact";
+    const double error = relativeRms(shown, test::exactLobesAt(base, exponents, directions));
     std::printf("[ RenderCommand ] exponent 16 at face 64: %zu of %d object pixels exact, relative RMS %.2f %%\n",
                 directions.size(), object, 100.0 * error);
-    // Measured 0.84 % (12 364 of 13 432 pixels exact) on llvmpipe; bound 2 %, the issue's.
+    // Bound 2 %, the issue's.
     EXPECT_LE(error, 0.02);
 }
 
-// --no-settle: the instant path, what the window shows while a slider moves. The glossy sphere is
-// read from the chain (no lobe cube), so it differs from the settled picture, and no glossy pixel is
-// marked exact (only a lobe cube, the mirror or the irradiance map can be).
-TEST(RenderCommand, NoSettleRendersTheInstantPathAndMarksNoGlossyPixelExact) {
+// --no-settle: what the window shows before the lobe stack's entries for a λ have arrived. The
+// glossy sphere is read from the chain, so it differs from the settled picture, and no glossy pixel
+// is marked exact (only the lobe stack, the mirror or the irradiance map can be).
+TEST(RenderCommand, NoSettleRendersTheChainBeforeTheStackAndMarksNoGlossyPixelExact) {
     test::TempDir dir;
     const auto sphere = dir / "sphere.obj";
     writeMesh(makeSphere(32, 64), sphere);
@@ -275,7 +279,7 @@ TEST(RenderCommand, NoSettleRendersTheInstantPathAndMarksNoGlossyPixelExact) {
                 "%.2f %% of the mean\n", exactSettled, object, exactInstant, 100.0 * sumDifference / sum);
     EXPECT_GT(exactSettled, object / 2);
     EXPECT_EQ(exactInstant, 0);
-    EXPECT_GT(sumDifference / sum, 1e-3) << "the instant path is the settled picture: were lobe cubes made?";
+    EXPECT_GT(sumDifference / sum, 1e-3) << "the chain's picture is the stack's: were the entries made?";
 }
 
 TEST(RenderCommand, AbsurdExponentOrLambdaIsAUsageErrorNamingTheFlag) {

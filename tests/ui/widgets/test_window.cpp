@@ -195,19 +195,18 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     const QImage before = w->viewport()->grabFramebuffer();
     const std::uint64_t buildsBefore = w->environments()->counters().chainBuilds;
     const std::uint64_t uploadsBefore = w->viewport()->counters().chainUploads;
-    const std::uint64_t lobesBefore = w->environments()->counters().lobeBuilds;
+    const std::uint64_t settledBefore = w->viewport()->counters().objectsSettled;
     EXPECT_GE(uploadsBefore, 1u);
 
     QSignalSpy frames(w->viewport(), &Viewport::frameDrawn);
     typeInto(lambdaSpin, QStringLiteral("0.5"));
     EXPECT_FLOAT_EQ(w->document()->materialOf(1).lambda, 0.5f);
     ASSERT_TRUE(waitUntil([&] { return frames.count() > 0; }, kFrameTimeoutMs)) << "no frame after the edit";
-    // While λ moves the chain shows it: nothing is built or uploaded for the chain. Once λ rests
-    // (EnvironmentManager::kSettleMs), one lobe cube is made for it: the settled picture.
+    // Nothing is built or uploaded for the chain. λ 0.5 (n = 24575) is sharper than the lobe
+    // stack's sharpest entry at this face size (lobes.h, stackTop): the chain shows it.
     ASSERT_TRUE(w->environments()->waitUntilIdle());
     ASSERT_TRUE(settledFrame(*w));
-    EXPECT_EQ(w->environments()->counters().lobeBuilds, lobesBefore + 1) << "one lobe cube for the new λ";
-    EXPECT_GE(w->viewport()->counters().objectsSettled, 1u);
+    EXPECT_EQ(w->viewport()->counters().objectsSettled, settledBefore - 1) << "λ 0.5 from the chain";
     const QImage after = w->viewport()->grabFramebuffer();
 
     ASSERT_EQ(before.size(), after.size());
@@ -228,6 +227,23 @@ TEST(MainWindow, LambdaEditRedrawsWithoutRebuildingOrUploading) {
     }
     EXPECT_EQ(w->environments()->counters().chainBuilds, buildsBefore);
     EXPECT_EQ(w->viewport()->counters().chainUploads, uploadsBefore);
+
+    // Any λ with no waiting (issue 24): λ 4 rests, its entries are made, then (quietly) those
+    // within a level of them; λ at quarter steps there is read from the stack's exact lobes on the
+    // very first frame after the edit: nothing is made for it, the object counts as settled.
+    typeInto(lambdaSpin, QStringLiteral("4"));
+    ASSERT_TRUE(w->environments()->waitUntilIdle());
+    ASSERT_TRUE(settledFrame(*w));
+    EXPECT_EQ(w->viewport()->counters().objectsSettled, settledBefore) << "λ 4 from the stack";
+    ASSERT_TRUE(waitUntil([&] { return !w->environments()->makingLobes(); }, kEnvironmentTimeoutMs));
+    for (const char* lambda : {"4.25", "4.5", "4.75", "3.75", "3.5"}) {
+        const std::uint64_t lobes = w->environments()->counters().lobeBuilds;
+        QSignalSpy quarterFrames(w->viewport(), &Viewport::frameDrawn);
+        typeInto(lambdaSpin, QString::fromLatin1(lambda));
+        ASSERT_TRUE(waitUntil([&] { return quarterFrames.count() > 0; }, kFrameTimeoutMs)) << lambda;
+        EXPECT_EQ(w->environments()->counters().lobeBuilds, lobes) << "λ " << lambda << ": nothing made";
+        EXPECT_EQ(w->viewport()->counters().objectsSettled, settledBefore) << "λ " << lambda << " read from the stack at once";
+    }
 
     // Typing an exponent sets λ through the one mapping (phong.h), whatever the face size.
     typeInto(exponentSpin, QStringLiteral("250"));

@@ -75,10 +75,12 @@ void EnvironmentManager::startLobeJob() {
     } else if (lobeJob_) {
         lobeJob_->cancel();  // a near entry's job: what is in use goes first
     }
-    // Keep what is in use or near it, drop the rest.
+    // Keep what is within two levels of what is in use (a slider going back and forth finds its
+    // entries again), drop the rest.
+    const std::vector<int> kept = lobesNear(document_->scene(), baseSize, 2 * kStackStepsPerLevel);
     const auto dropped = std::erase_if(lobes_, [&](const auto& entry) {
         return std::find(inUse.begin(), inUse.end(), entry.first) == inUse.end() &&
-               std::find(near.begin(), near.end(), entry.first) == near.end();
+               std::find(kept.begin(), kept.end(), entry.first) == kept.end();
     });
     if (dropped > 0) emit lobesReady();
     if (missing.empty()) return;
@@ -113,7 +115,10 @@ void EnvironmentManager::startLobeJob() {
                     ++counters_.lobeBuilds;
                     changed = true;
                 }
-            if (changed) emit lobesReady();
+            // Entries near those in use change nothing on screen: the view takes them at its
+            // next frame (it hands the renderer lobes() every frame), so no frame is drawn for
+            // them while the user is idle.
+            if (changed && forInUse) emit lobesReady();
             // Then the next entry (startLobeJob returns when none is missing), unless λ is moving
             // (the settle timer starts it when it rests).
             if (!busy_ && !lobeJob_ && !settle_->isActive() && (lobesWanted_ || !job.cancelled())) startLobeJob();

@@ -188,11 +188,12 @@ void Viewport::paintGL() {
         const QString text =
             QStringLiteral("frames %1  drawn %2  culled %3\nbuilds %4  irradiance %5  imports %6\n"
                            "base uploads %7  chain uploads %8  mesh uploads %9  samplers %10\n"
-                           "lobe cubes built %11  on GPU %12\nsettled (own lobe) %13  from the chain %14")
+                           "stack entries built %11  on GPU %12 (%15 MB)\nsettled (stack) %13  from the chain %14")
                 .arg(c.frames).arg(c.objectsDrawn).arg(c.objectsCulled)
                 .arg(e.chainBuilds).arg(e.irradianceBuilds).arg(e.imports)
                 .arg(c.baseUploads).arg(c.chainUploads).arg(c.meshUploads).arg(c.samplersCreated)
-                .arg(e.lobeBuilds).arg(c.lobesResident).arg(c.objectsSettled).arg(c.objectsFromChain);
+                .arg(e.lobeBuilds).arg(c.lobesResident).arg(c.objectsSettled).arg(c.objectsFromChain)
+                .arg(static_cast<double>(c.stackBytes) / 1e6, 0, 'f', 1);
         const int top = comparing() ? 40 : 6;
         painter.fillRect(QRect(6, top, 400, 84), QColor(0, 0, 0, 140));
         painter.drawText(QRect(12, top + 2, 390, 82), Qt::AlignLeft | Qt::AlignTop, text);

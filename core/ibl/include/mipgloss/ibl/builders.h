@@ -59,7 +59,7 @@ MipChain buildChain(const CubeMap& base, Builder builder, const BuildOptions& op
 // The individual builders.
 MipChain buildBoxChain(const CubeMap& base, const BuildOptions& options = {});
 MipChain buildPaperChain(const CubeMap& base, const BuildOptions& options = {});
-// `filter`, when given, is this base's PhongFilter (kept for lobe cubes): its pyramid is reused.
+// `filter`, when given, is this base's PhongFilter (kept for the lobe stack): its pyramid is reused.
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options = {}, const PhongFilter* filter = nullptr);
 MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options = {});
 
@@ -68,8 +68,8 @@ MipChain buildReferenceChain(const CubeMap& base, const BuildOptions& options = 
 // below a chain that stops early.
 CubeMap boxDownsample(const CubeMap& level, int size);
 
-// The default builder's machinery, kept for lobes made after the chain: the lobe cube of one
-// material (the settled picture) comes from the same energy pyramid. Built once per base
+// The default builder's machinery, kept for lobes made after the chain: each entry of the lobe
+// stack (scene/lobes.h) comes from the same energy pyramid. Built once per base
 // (about a third of the base's size in memory); filter() may run on any thread.
 // The default builder's shortcuts (docs/chain-schedule.md). The defaults are the product's;
 // `mipgloss bench --shortcuts` builds with each one changed to measure what it costs.
@@ -106,10 +106,10 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// The face size of a lobe cube: large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
+// The face size of a lobe cube (a lobe stack entry): large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
 // reads between its centres stay within about 1 % (docs/chain-schedule.md), i.e. ceil(√(32 n)),
 // at least 16 (smooth enough that even the widest lobes show no texel structure) and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
-// more coarsely, and the renderer does not call them exact.
+// more coarsely, and the stack stops below them (stackTop).
 int lobeCubeSize(double exponent, int baseSize);
 // True when lobeCubeSize holds the lobe at full width (√(32 n) fits under the cap).
 bool lobeCubeHoldsLobe(double exponent, int baseSize);

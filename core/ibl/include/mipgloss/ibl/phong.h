@@ -14,8 +14,8 @@
 // centres (bilinear reads), σ ≈ 3.6 of its texels, n_k = M_k²/32 for a face of M_k ≥ 16 texels,
 // and n = 1 (the diffuse kernel, irradiance/π) at the last level it reads, the first of 8 to 15
 // texels. Smaller levels are never read. The renderer turns a material's n into a fractional
-// chain level (`chainLevelForExponent`) while the user drags, and into a lobe cube of its own
-// (builders.h) once it rests.
+// chain level (`chainLevelForExponent`) until the lobe stack (scene/lobes.h) holds it, then reads
+// the stack's exact lobes.
 #pragma once
 
 #include <limits>
@@ -49,7 +49,7 @@ int lastReadLevel(int baseSize);
 // blend has the lobe's mean cosine (its band-1 factor (n+1)/(n+2), docs/phong-lobe.md):
 //     t = (Λ(n_k) − Λ(n)) / (Λ(n_k) − Λ(n_k+1)),   Λ(n) = (n+1)/(n+2), Λ(∞) = 1,
 // so the blend is as wide as the lobe on average (not the same shape: 10–58 % off it at half levels,
-// mipgloss bench; the lobe cube of the settled picture removes that). 0 for the mirror, lastReadLevel for n <= 1.
+// mipgloss bench; the lobe stack removes that). 0 for the mirror, lastReadLevel for n <= 1.
 double chainLevelForExponent(double exponent, int baseSize);
 // Its inverse: the lobe the renderer means when it reads the chain at `lod` (∞ at 0, 1 at
 // lastReadLevel and beyond). Λ(n) = (n+1)/(n+2) is inverted as n = (2Λ − 1)/(1 − Λ).

@@ -65,7 +65,9 @@ struct LobeCube {
 
 // How many entries past a lobe's wider neighbour the scene asks for, for pixels whose footprint
 // widens the lobe (footprintExponent): 4, half a level, holds lobes down to 2^(−5/4) ≈ 0.42 of n.
-// Pixels widened further read the chain (and the AOV does not call them exact). On a 512² sphere
+// Pixels the footprint would widen further show that widest lobe (lobe_stack.glsl,
+// footprintLimitedExponent), so the picture does not depend on which other entries are made; the
+// AOV does not call them exact. On a 512² sphere
 // at n = 1024, 94 % of the pixels are widened by more than 1 % (test_settled_picture.cpp).
 inline constexpr int kFootprintReach = 4;
 

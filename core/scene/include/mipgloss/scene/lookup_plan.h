@@ -12,8 +12,8 @@ namespace mipgloss {
 
 // What the shaders look the environment up by (object.frag, aov.frag: uLookup).
 enum class ShaderLookup : int {
-    Reflect = 0,     // the reflection vector, into the chain or the lobe cube
-    Normal = 1,      // the normal, into the chain or the lobe cube
+    Reflect = 0,     // the reflection vector, into the chain or the lobe stack
+    Normal = 1,      // the normal, into the chain or the lobe stack
     Irradiance = 2,  // the normal, into the irradiance map (E/π)
 };
 
@@ -29,7 +29,7 @@ struct ObjectLookup {
     // picks its own level.
     float minLevel = 0.0f;
 
-    // Whether the chain stands in for the lobe when no lobe cube is bound (a glossy lookup).
+    // Whether the chain stands in for the lobe where the stack does not hold it (a glossy lookup).
     bool readsChainForLobe() const { return lookup != ShaderLookup::Irradiance && lambda > 0.0f; }
 };
 

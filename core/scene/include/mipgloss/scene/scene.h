@@ -50,8 +50,8 @@ struct Layers {
 
 struct Material {
     // The artist's blur: the Phong exponent n(λ) of phong.h, the same lobe under any environment
-    // and face size (λ = 0 a mirror). The renderer shows it through the chain while λ moves and
-    // through a lobe cube of its own once it rests.
+    // and face size (λ = 0 a mirror). The renderer shows it from the lobe stack (lobes.h), and
+    // through the chain until the stack's entries for it are made.
     float lambda = 0.0f;
     LookupMode mode = LookupMode::Reflect;
     // Normal mode only: look up the accurate irradiance map (E/π, irradiance.h) instead of the

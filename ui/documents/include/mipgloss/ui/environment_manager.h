@@ -7,8 +7,10 @@
 // for the same file with other needs lets the import finish and starts from it).
 // It watches a SceneDocument and asks for exactly what the scene needs (environment.h): a change
 // of λ inside the filtered levels, of mode or of tint builds nothing. Once the scene's λ values
-// have rested for kSettleMs, it makes the lobe cubes they need (lobes.h) on the same worker, one
-// per lobe in use, so the settled picture shows each material's exact lobe.
+// have rested for kSettleMs, it makes the lobe stack's entries they read (lobes.h, lobesInUse) on
+// the same worker, so the settled picture shows each material's exact lobe; then, one per job and
+// without counting as busy, the entries within a level of them (lobesNear), so a slider moving
+// there reads exact lobes at once.
 #pragma once
 
 #include "mipgloss/scene/environment.h"
@@ -39,7 +41,7 @@ struct EnvironmentCounters {
     std::uint64_t chainBuilds = 0;       // mip chains built
     std::uint64_t irradianceBuilds = 0;  // irradiance maps computed
     std::uint64_t failures = 0;
-    std::uint64_t lobeBuilds = 0;        // lobe cubes made and kept (of the current environment)
+    std::uint64_t lobeBuilds = 0;        // lobe stack entries made and kept (of the current environment)
 };
 
 class EnvironmentManager : public QObject {
@@ -67,10 +69,12 @@ public:
     std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
 
     bool busy() const { return busy_ || lobeBusy_; }
+    // Whether lobe stack entries are being made (those in use, or quietly those near them).
+    bool makingLobes() const { return lobeJob_ != nullptr; }
 
-    // The lobe cubes made for the current environment (those in use, and a few recent ones).
+    // The lobe stack's entries made for the current environment (those in use and near them).
     std::vector<std::shared_ptr<const LobeCube>> lobes() const;
-    // How long λ must rest before lobe cubes are made.
+    // How long λ must rest before the stack entries it needs are made.
     static constexpr int kSettleMs = 150;
 
     // The settings of the last request that failed. The manager does not retry them by itself (a
@@ -89,7 +93,7 @@ signals:
     void progress(const QString& stage, double fraction);  // from the worker, queued to the UI
     // current() changed (for a new import: early, then complete).
     void environmentReady();
-    void lobesReady();  // lobes() changed
+    void lobesReady();  // lobes() changed: the entries in use arrived (those near them arrive quietly)
     // A file could not be used; `message` names it. The current environment is kept.
     void failed(const QString& message);
 

@@ -25,7 +25,7 @@ public:
     QImage render(const Scene& scene, const OrbitCamera& camera,
                   const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height);
 
-    // The lobe cubes later renders draw settled materials from (Renderer::setLobes).
+    // The lobe stack's entries later renders read lobes from (Renderer::setLobes).
     void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
     // The object later renders outline (Renderer::setHighlightedObject); -1 by default.
     void setHighlightedObject(int index);
