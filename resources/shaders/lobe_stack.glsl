@@ -4,9 +4,10 @@
 // mean cosine (stackBlend in lobes.h); a fragment whose footprint is wider than its lobe reads
 // the wider lobe the footprint makes (footprintExponent). Included by object.frag, aov.frag and
 // background.frag.
-uniform sampler2D uStack;                   // unit 2: the atlas, linear, no mips
+uniform sampler2D uStack;                   // unit 2: the atlas (RGB9_E5), linear, no mips
 uniform vec4 uStackEntry[STACK_SLOTS];      // per entry: block origin x, y (texels), face size, 1 when present
-uniform float uStackExponent[STACK_SLOTS];  // per entry: its exponent (−1 when absent)
+uniform float uStackExponent[STACK_SLOTS];  // per entry: its exponent
+uniform float uStackScale[STACK_SLOTS];     // per entry: what its stored texels are multiplied by
 uniform int uStackTop;                      // the sharpest entry (lobes.h, stackTop)
 
 // Face and (s, t) of a direction, by the major axis as the OpenGL specification's cube map table
@@ -32,7 +33,7 @@ vec3 stackEntryAt(int j, vec3 d) {
     vec4 e = uStackEntry[j];
     float stride = e.z + 2.0;
     vec2 texel = e.xy + vec2(float(face % 3), float(face / 3)) * stride + 1.0 + st * e.z;
-    return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb;
+    return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb * uStackScale[j];
 }
 
 // λ(n) = log2(128·√3) − ½·log2(n + 1) (phong.h), for finding n's neighbours.

@@ -213,8 +213,8 @@ TEST(LobeStack, AtlasHoldsEveryFaceOnceInsideItsBounds) {
     }
     EXPECT_LE(atlas.width, 2048);
     // Shelf packing, largest first: printed, not a bound.
-    std::printf("atlas %d x %d, %.0f %% used, %.1f MB as RGB32F\n", atlas.width, atlas.height,
-                100.0 * used / (static_cast<double>(atlas.width) * atlas.height), atlas.megabytes(12));
+    std::printf("atlas %d x %d, %.0f %% used, %.1f MB as RGB9_E5\n", atlas.width, atlas.height,
+                100.0 * used / (static_cast<double>(atlas.width) * atlas.height), atlas.megabytes(4));
 }
 
 // The blend of two exact neighbours against the exact lobe between them, on held-out maps (one

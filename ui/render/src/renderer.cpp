@@ -75,6 +75,7 @@ struct Renderer::Impl {
     GLuint stackTexture = 0;
     std::array<glm::vec4, kStackSlots> stackTable{};  // block x, y, face size, 1 when present
     std::array<float, kStackSlots> stackExponents{};
+    std::array<float, kStackSlots> stackScales{};  // what an entry's stored texels are multiplied by
     int stackBaseSize = 0;  // the base face size the entries were made from
     std::optional<std::array<int, 4>> outputRect;  // setOutputRect: x, y, width, height
     bool transparentBackground = false;
@@ -129,6 +130,7 @@ struct Renderer::Impl {
             for (glm::vec4& e : table) e.w = 0.0f;
         gl->glUniform4fv(program.uniformLocation("uStackEntry"), kStackSlots, glm::value_ptr(table[0]));
         gl->glUniform1fv(program.uniformLocation("uStackExponent"), kStackSlots, stackExponents.data());
+        gl->glUniform1fv(program.uniformLocation("uStackScale"), kStackSlots, stackScales.data());
         gl->glUniform1i(program.uniformLocation("uStackTop"), stackTop(std::max(stackBaseSize, 1)));
         gl->glActiveTexture(GL_TEXTURE0 + kStackUnit);
         gl->glBindTexture(GL_TEXTURE_2D, stackTexture);
@@ -590,7 +592,7 @@ bool Renderer::initialize(std::string* error) {
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, 1, 1, 0, GL_RGB, GL_FLOAT, nullptr);
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB9_E5, 1, 1, 0, GL_RGB, GL_FLOAT, nullptr);
     impl_->toneProgram->bind();
     impl_->toneProgram->setUniformValue("uHdr", 0);
     impl_->toneProgram->release();
@@ -796,7 +798,12 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobe
     if (wanted.empty()) return;
     d.stackBaseSize = wanted.begin()->second->filter ? wanted.begin()->second->filter->baseSize() : 0;
     // The atlas is packed again for every new set of entries and sent whole: the set changes when
-    // λ leaves the range made (a few times a drag), and sending 60 MB costs tens of milliseconds.
+    // λ leaves the range made (a few times a drag), and sending 40 MB costs tens of milliseconds.
+    // Stored as GL_RGB9_E5 (a shared exponent, 9-bit mantissas: 4 bytes a texel, a third of
+    // RGB32F; each texel's largest channel within 2^-10, the others within 2^-10 of it), each entry
+    // scaled by a power of two that brings its largest value just under the format's 65408 and
+    // scaled back in the shader (uStackScale), so no environment's absolute scale matters
+    // (docs/lobe-stack.md).
     std::vector<std::pair<int, int>> sizes;
     for (const auto& [index, lobe] : wanted) sizes.emplace_back(index, lobe->cube->size());
     GLint maxSize = 0;
@@ -804,10 +811,18 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobe
     const LobeStackAtlas atlas = lobeStackAtlas(sizes, std::min(4096, static_cast<int>(maxSize)));
     std::vector<float> texels(static_cast<std::size_t>(atlas.width) * static_cast<std::size_t>(atlas.height) * 3, 0.0f);
     std::size_t i = 0;
+    d.stackScales.fill(1.0f);
     for (const auto& [index, lobe] : wanted) {
         const AtlasPlacement& at = atlas.placed[i++];
         const CubeMap& cube = *lobe->cube;
         const int stride = cube.size() + 2;
+        float largest = 0.0f;
+        for (Face f : kAllFaces)
+            for (const Rgb& c : cube.faceStorage(f)) largest = std::max({largest, c.r, c.g, c.b});
+        // 2^k with largest·2^k in [32704, 65408): exact, and within float's range for any entry
+        // (the import keeps radiance in [0, 1e20], and a map at 1e-30 still has 2^99 of room).
+        const float scale = largest > 0.0f ? std::exp2(std::floor(std::log2(65408.0f / largest))) : 1.0f;
+        d.stackScales[static_cast<std::size_t>(index)] = 1.0f / scale;
         for (Face f : kAllFaces) {
             const std::vector<Rgb>& face = cube.faceStorage(f);  // (size + 2)² with the border, row 0 first
             const int fx = at.x + (static_cast<int>(f) % 3) * stride, fy = at.y + (static_cast<int>(f) / 3) * stride;
@@ -816,9 +831,9 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobe
                     const Rgb& c = face[static_cast<std::size_t>(y) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x)];
                     float* t = &texels[(static_cast<std::size_t>(fy + y) * static_cast<std::size_t>(atlas.width) +
                                         static_cast<std::size_t>(fx + x)) * 3];
-                    t[0] = c.r;
-                    t[1] = c.g;
-                    t[2] = c.b;
+                    t[0] = c.r * scale;
+                    t[1] = c.g * scale;
+                    t[2] = c.b * scale;
                 }
         }
         d.stackTable[static_cast<std::size_t>(index)] =
@@ -827,8 +842,8 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobe
     }
     d.gl->glBindTexture(GL_TEXTURE_2D, d.stackTexture);
     d.gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    d.gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, atlas.width, atlas.height, 0, GL_RGB, GL_FLOAT, texels.data());
-    d.counters.stackBytes = static_cast<std::uint64_t>(atlas.width) * static_cast<std::uint64_t>(atlas.height) * 12;
+    d.gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB9_E5, atlas.width, atlas.height, 0, GL_RGB, GL_FLOAT, texels.data());
+    d.counters.stackBytes = static_cast<std::uint64_t>(atlas.width) * static_cast<std::uint64_t>(atlas.height) * 4;
 }
 
 AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height) {

@@ -42,7 +42,7 @@ struct RenderCounters {
     std::uint64_t drawCalls = 0;          // in the last frame
     std::uint64_t lobeUploads = 0;        // lobe stack entries sent to the GPU (a new set sends all again)
     std::uint64_t lobesResident = 0;      // lobe stack entries on the GPU now
-    std::uint64_t stackBytes = 0;         // the lobe stack's atlas on the GPU (RGB32F)
+    std::uint64_t stackBytes = 0;         // the lobe stack's atlas on the GPU (RGB9_E5, 4 bytes a texel)
     std::uint64_t objectsSettled = 0;     // in the last frame: every lobe read from the lobe stack
     std::uint64_t objectsFromChain = 0;   // in the last frame: blurred, read from the chain
 };
