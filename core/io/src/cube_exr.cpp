@@ -229,7 +229,7 @@ MipChain readCubeEnvironmentExr(const fs::path& file) {
                         nc >= 3 ? Rgb(px[i], px[i + 1], px[i + 2]) : Rgb(px[i]);
                 }
         }
-        sanitise(texels);
+        sanitiseRows(texels, m);
         CubeMap c(m);
         for (std::size_t fi = 0; fi < 6; ++fi)
             for (int y = 0; y < m; ++y)

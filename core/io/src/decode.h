@@ -25,10 +25,9 @@ namespace mipgloss::io_detail {
 // Adds the counts to the report with one warning naming the file (nothing when all are zero).
 void addCounts(ImportReport& report, const std::filesystem::path& file, const SanitiseCounts& n);
 
-// Where a streamed decode sends each strip: rows [y0, y1), sanitised except for +Inf
-// (hasInfinity says whether the strip holds any; the image's largest finite value comes back from
-// readImageFile). Called in order, one at a time, from a pool thread.
-using StripConsumer = std::function<void(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity)>;
+// Where a streamed decode sends each strip: rows [y0, y1), sanitised. Called in order, one at a
+// time, from a pool thread.
+using StripConsumer = std::function<void(int y0, int y1, std::span<const Rgb> rows)>;
 // Chosen from the image's size once the header is read: a consumer streams the image, none reads
 // it whole.
 using ChooseStrips = std::function<StripConsumer(int width, int height)>;
@@ -39,11 +38,10 @@ using ChooseStrips = std::function<StripConsumer(int width, int height)>;
 // reporting stage "import" from p0 to p1 after each strip; throws Cancelled when told to stop.
 Image readImageFile(const std::filesystem::path& file, ImportReport& report, const Progress& progress = {},
                     float p0 = 0.0f, float p1 = 0.0f);
-// The same, streamed when `choose` gives a consumer: then the returned image is empty (0 × 0)
-// and `maxFinite` (if given) is the image's largest finite value, for the consumer's +Inf. While
-// strip k is consumed in the background, strip k + 1 is read.
+// The same, streamed when `choose` gives a consumer: then the returned image is empty (0 × 0).
+// While strip k is consumed in the background, strip k + 1 is read.
 Image readImageFile(const std::filesystem::path& file, ImportReport& report, const Progress& progress, float p0,
-                    float p1, const ChooseStrips& choose, float* maxFinite);
+                    float p1, const ChooseStrips& choose);
 
 // The same from bytes in memory; `name` stands for the file (its extension names the format).
 Image readImageMemory(std::span<const unsigned char> bytes, const std::string& name, ImportReport& report,

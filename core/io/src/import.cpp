@@ -145,20 +145,17 @@ ImportedEnvironment loadEnvironment(const fs::path& path, const ImportOptions& o
         const int n = latLongFaceSize(options, width);
         if (layout != EnvLayout::LatLong || !latLongStreams(width, height, n)) return {};
         stream = std::make_unique<LatLongStream>(width, height, n);
-        return [&stream](int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
-            stream->addStrip(y0, y1, rows, hasInfinity);
-        };
+        return [&stream](int y0, int y1, std::span<const Rgb> rows) { stream->addStrip(y0, y1, rows); };
     };
     // The decode's share of the bar is known only once the header has chosen: streamed, the
     // decode carries the conversion (to 0.8); whole, the conversion comes after it (from 0.3).
     const Progress decodeProgress = [&](const std::string& stage, float f) {
         return !progress || progress(stage, f * (stream ? 0.8f : 0.3f));
     };
-    float maxFinite = 0.0f;
-    const Image img = readImageFile(path, report, decodeProgress, 0.0f, 1.0f, choose, &maxFinite);
+    const Image img = readImageFile(path, report, decodeProgress, 0.0f, 1.0f, choose);
     if (stream) {
         report.layout = EnvLayout::LatLong;
-        CubeMap cube = stream->finish(maxFinite, progress, 0.8f, 0.95f);
+        CubeMap cube = stream->finish(progress, 0.8f, 0.95f);
         return finish(std::move(cube), std::move(report), 0, progress);
     }
     reportProgress(progress, "import", 0.3f);

@@ -69,11 +69,10 @@ CubeMap convert(const LatLongView& img, int faceSize, const ProgressSpan& progre
         const std::size_t w = static_cast<std::size_t>(img.width);
         for (int y0 = 0; y0 < img.height; y0 += io_detail::kLatLongStripRows) {
             const int y1 = std::min(img.height, y0 + io_detail::kLatLongStripRows);
-            stream.addStrip(y0, y1, img.pixels.subspan(static_cast<std::size_t>(y0) * w, static_cast<std::size_t>(y1 - y0) * w),
-                            false);
+            stream.addStrip(y0, y1, img.pixels.subspan(static_cast<std::size_t>(y0) * w, static_cast<std::size_t>(y1 - y0) * w));
             progress.report(0.5 * y1 / img.height);
         }
-        return stream.finish(0.0f, progress.sub(0.5, 1.0));
+        return stream.finish(progress.sub(0.5, 1.0));
     }
     const BrightSplit split = splitBright(img);
     progress.report(0.05);
@@ -116,12 +115,12 @@ LatLongStream::LatLongStream(int width, int height, int faceSize) {
 }
 LatLongStream::~LatLongStream() = default;
 
-void LatLongStream::addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
-    impl_->stream.addStrip(y0, y1, rows, hasInfinity);
+void LatLongStream::addStrip(int y0, int y1, std::span<const Rgb> rows) {
+    impl_->stream.addStrip(y0, y1, rows);
 }
 
-CubeMap LatLongStream::finish(float maxFinite, const Progress& progress, float p0, float p1) {
-    return impl_->stream.finish(maxFinite, {progress, p0, p1});
+CubeMap LatLongStream::finish(const Progress& progress, float p0, float p1) {
+    return impl_->stream.finish({progress, p0, p1});
 }
 
 const LatLongStream::Stats& LatLongStream::stats() const { return impl_->stream.stats(); }

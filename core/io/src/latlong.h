@@ -24,8 +24,7 @@ bool latLongStreams(int width, int height, int faceSize);
 
 // The scatter fed strip by strip (latlong_scatter.cpp, "Scatter, strip by strip"): the same
 // cube, to the bit, as latLongToCube of the whole image in strips of kLatLongStripRows. Strips
-// come in order, each sanitised except for +Inf; finish replaces +Inf by the image's largest
-// finite value.
+// come in order, each sanitised.
 // Throws std::invalid_argument for strips out of order or finish before the last row.
 class LatLongStream {
 public:
@@ -33,9 +32,9 @@ public:
     ~LatLongStream();
     LatLongStream(const LatLongStream&) = delete;
     LatLongStream& operator=(const LatLongStream&) = delete;
-    void addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity);
+    void addStrip(int y0, int y1, std::span<const Rgb> rows);
     // Borders are left for the caller's makeSeamless; reports stage "import" from p0 to p1.
-    CubeMap finish(float maxFinite, const Progress& progress, float p0, float p1);
+    CubeMap finish(const Progress& progress, float p0, float p1);
 
     // What took which path, for tests and benchmarks.
     struct Stats {

@@ -296,8 +296,8 @@ struct StrataColumns {
 class ScatterStream {
 public:
     ScatterStream(int width, int height, int n);
-    void addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity);
-    CubeMap finish(float maxFinite, const ProgressSpan& progress);
+    void addStrip(int y0, int y1, std::span<const Rgb> rows);
+    CubeMap finish(const ProgressSpan& progress);
 
     const io_detail::LatLongStream::Stats& stats() const { return stats_; }
 
@@ -308,7 +308,7 @@ private:
     };
     struct Strip {
         int y0, y1;
-        bool deferred, infinity;
+        bool deferred;
         float limit;                       // T_k (immediate strips)
         std::vector<Candidate> candidates;  // immediate strips: pixels above T_k, in image order
     };

@@ -69,8 +69,7 @@ void forBandsInTwoPhases(int lo, int hi, int rowsPerBand, const std::function<vo
 // quadrature is linear in the pixel values), so the cube is the quadrature of min(L, T) exactly as
 // if T had been known from the start; only rounding differs. Nothing is subtracted, so a sun far
 // above T_k costs no precision. A strip with more than 1/64 of its pixels above T_k (near the top
-// pole the sums are still small), a strip holding +Inf (replaced by the image's largest finite
-// value only at the end) and the last strip are deferred: kept whole. A deferred finite strip is
+// pole the sums are still small) and the last strip are deferred: kept whole. A deferred finite strip is
 // looked at again after every later one and clamped as soon as few enough of its pixels exceed
 // the grown bound; what is still deferred at the end is scattered with T. The pole values (the
 // means of the first and last rows clamped to T) and the two rows that read them wait for the end.
@@ -96,23 +95,21 @@ ScatterStream::ScatterStream(int width, int height, int n)
     }
 }
 
-// Rows [y0, y1), the next in order, sanitised except for +Inf (hasInfinity says whether
-// there is any). `rows` need only live for the call: what is needed later is copied.
-void ScatterStream::addStrip(int y0, int y1, std::span<const Rgb> rows, bool hasInfinity) {
+// Rows [y0, y1), the next in order, sanitised. `rows` need only live for the call: what is
+// needed later is copied.
+void ScatterStream::addStrip(int y0, int y1, std::span<const Rgb> rows) {
     if (y0 != next_ || y1 <= y0 || y1 > height_ || rows.size() != static_cast<std::size_t>(y1 - y0) * width_)
         throw std::invalid_argument("lat-long strip rows " + std::to_string(y0) + ".." + std::to_string(y1) +
                                     " out of order or of the wrong size");
     next_ = y1;
     for (int j = y0; j < y1; ++j) row_[static_cast<std::size_t>(j)] = rows.data() + static_cast<std::size_t>(j - y0) * width_;
-    if (!hasInfinity) {
-        sumRows(y0, y1);
-        for (int j = y0; j < y1; ++j) partial_ += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
-        clamp_ = thresholdOfMean(partial_ / weightSum_);
-    }
-    strips_.push_back({y0, y1, true, hasInfinity, std::numeric_limits<float>::infinity(), {}});
+    sumRows(y0, y1);
+    for (int j = y0; j < y1; ++j) partial_ += rowWeight_[static_cast<std::size_t>(j)] * rowSum_[static_cast<std::size_t>(j)];
+    clamp_ = thresholdOfMean(partial_ / weightSum_);
+    strips_.push_back({y0, y1, true, std::numeric_limits<float>::infinity(), {}});
     ++stats_.strips;
     // The last strip waits for the end whatever it holds: nothing is decoded after it.
-    if (hasInfinity || y1 == height_) {
+    if (y1 == height_) {
         ++stats_.deferred;
         for (int j = y0; j < y1; ++j) {
             deferred_[static_cast<std::size_t>(j)] = 1;
@@ -124,22 +121,17 @@ void ScatterStream::addStrip(int y0, int y1, std::span<const Rgb> rows, bool has
     // A strip deferred earlier is looked at again with the clamp as it is now (near the top
     // pole the first strips' sums are small, so they wait for a few more).
     for (Strip& s : strips_)
-        if (s.deferred && !s.infinity && s.y1 <= y0) clampOrDefer(s, true);
+        if (s.deferred && s.y1 <= y0) clampOrDefer(s, true);
     scatterReady();
     for (int j = 0; j < y1; ++j)
         if (kept_[static_cast<std::size_t>(j)].empty()) row_[static_cast<std::size_t>(j)] = nullptr;
 }
 
 // After the last strip: T, the deferred rows, the candidates' differences, the normalising
-// and the excess. +Inf in the deferred strips becomes `maxFinite`.
-CubeMap ScatterStream::finish(float maxFinite, const ProgressSpan& progress) {
+// and the excess.
+CubeMap ScatterStream::finish(const ProgressSpan& progress) {
     if (next_ != height_) throw std::invalid_argument("lat-long image incomplete: " + std::to_string(next_) + " of " +
                                                       std::to_string(height_) + " rows");
-    for (const Strip& s : strips_) {
-        if (!s.infinity) continue;
-        for (int j = s.y0; j < s.y1; ++j) io_detail::replaceInfinities(kept_[static_cast<std::size_t>(j)], maxFinite);
-        sumRows(s.y0, s.y1);
-    }
     const float threshold = finalThreshold();
     const float limit = threshold > 0.0f ? threshold : std::numeric_limits<float>::infinity();
     for (const Strip& s : strips_)

@@ -13,19 +13,25 @@ namespace mipgloss::io_detail {
 // A decoded image: linear float RGB, row 0 at the top (import.h).
 using Image = DecodedImage;
 
+// What the rule did, with the energy (the sum of all values, channels added) each part changed.
 struct SanitiseCounts {
     std::size_t nan = 0, inf = 0, negative = 0, huge = 0;
+    double energy = 0.0;         // the sanitised pixels' sum
+    double infAdded = 0.0;       // what +Inf became
+    double negativeMoved = 0.0;  // the negatives' magnitude taken from their row neighbours
+    double negativeAdded = 0.0;  // the part no neighbour could give: added by the clamp
+    double hugeRemoved = 0.0;    // what lowering values above kMaxRadiance took away
+    SanitiseCounts& operator+=(const SanitiseCounts& other);
 };
 
-// The one sanitising rule for every pixel mipgloss reads (images, face files, cube EXR files):
-// NaN -> 0, negative (including -Inf) -> 0, finite values above kMaxRadiance -> kMaxRadiance,
-// +Inf -> the largest value left among `px`.
-SanitiseCounts sanitise(std::span<Rgb> px);
-
-// The rule in two steps, for data that arrives in pieces: sanitiseFinite fixes NaN and negatives,
-// counts +Inf (leaving it) and raises `maxFinite` to the piece's largest finite value;
-// replaceInfinities then sets every +Inf to the final `maxFinite`.
-SanitiseCounts sanitiseFinite(std::span<Rgb> px, float& maxFinite);
-void replaceInfinities(std::span<Rgb> px, float maxFinite);
+// The one sanitising rule for every pixel mipgloss reads (images, face files, cube EXR files),
+// row by row (`px` is whole rows of `width`), so a strip can be sanitised alone (docs/conventions.md):
+// - NaN -> 0;
+// - finite values above kMaxRadiance -> kMaxRadiance;
+// - a run of +Inf -> the mean of the finite values bordering it in its row (0 if none);
+// - a negative value -> 0, its magnitude taken from the nearest positive values in its row, half
+//   from each side, so the row keeps its energy; −Inf -> 0.
+// Throws std::invalid_argument if `px` is not whole rows.
+SanitiseCounts sanitiseRows(std::span<Rgb> px, int width);
 
 }  // namespace mipgloss::io_detail

@@ -85,16 +85,17 @@ TEST(DecodeStrips, GreyAndGreyAlphaAreReplicatedInEveryStrip) {
     expectExact(decodeImage(dir / "grey_alpha.exr"), 20, 600, 2);
 }
 
-TEST(DecodeStrips, InfinityTakesTheLargestFiniteValueOfTheWholeImage) {
+TEST(DecodeStrips, EachRuleIsRowLocalAndKeepsTheRowsEnergy) {
     TempDir dir;
-    // +Inf in the first strip, the largest finite value in the last one: the replacement must wait
-    // for the whole image.
+    // +Inf in the first strip beside 3 and 1; the largest finite value (42) in the last strip no
+    // longer matters; a negative of −2 in row 300 between ones; NaN.
     const int w = 8, h = 600;
     std::vector<float> px(static_cast<std::size_t>(w * h * 3), 1.0f);
     px[0] = std::numeric_limits<float>::infinity();
+    px[3] = 3.0f;  // pixel (1, 0), red
     px[static_cast<std::size_t>((w * (h - 1) + 3) * 3 + 1)] = 42.0f;
     px[5] = std::numeric_limits<float>::quiet_NaN();
-    px[static_cast<std::size_t>(w * 300 * 3)] = -2.0f;
+    px[static_cast<std::size_t>((w * 300 + 4) * 3)] = -2.0f;  // pixel (4, 300), red
     auto out = OIIO::ImageOutput::create((dir / "inf.exr").string());
     ASSERT_TRUE(out);
     ASSERT_TRUE(out->open((dir / "inf.exr").string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
@@ -102,12 +103,23 @@ TEST(DecodeStrips, InfinityTakesTheLargestFiniteValueOfTheWholeImage) {
     ASSERT_TRUE(out->close());
     ImportReport report;
     const DecodedImage img = decodeImage(dir / "inf.exr", &report);
-    EXPECT_EQ(img.at(0, 0).x, 42.0f);
+    EXPECT_EQ(img.at(0, 0).x, 3.0f) << "+Inf at the row's start: its one finite neighbour";
     EXPECT_EQ(img.at(1, 0).z, 0.0f);    // NaN -> 0
-    EXPECT_EQ(img.at(0, 300).x, 0.0f);  // negative -> 0
+    // −2 -> 0, and 1 taken from each side: the nearest positives are (3, 300) and (5, 300).
+    EXPECT_EQ(img.at(4, 300).x, 0.0f);
+    EXPECT_EQ(img.at(3, 300).x, 0.0f);
+    EXPECT_EQ(img.at(5, 300).x, 0.0f);
+    EXPECT_EQ(img.at(2, 300).x, 1.0f);
+    double row = 0.0;
+    for (int x = 0; x < w; ++x) row += img.at(x, 300).x;
+    EXPECT_DOUBLE_EQ(row, 8.0 - 1.0 - 2.0) << "the row's signed sum, kept";
     EXPECT_EQ(report.infCount, 1u);
     EXPECT_EQ(report.nanCount, 1u);
     EXPECT_EQ(report.negativeCount, 1u);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    // Energy: 4800·3 − 1 values of 1 (less the NaN), the 3, the 42, the +Inf's 3 and the −2 moved.
+    EXPECT_NE(report.warnings[0].find("adding 0.02 %"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("taking their 0.01 %"), std::string::npos) << report.warnings[0];
 }
 
 TEST(DecodeLimits, HeaderClaimingAMillionSquaredPixelsIsRefusedBeforeAllocating) {
@@ -206,7 +218,7 @@ TEST(DecodeStrips, ValuesNearFloatMaxAreLoweredSoAveragesStayFinite) {
     ImportReport report;
     const DecodedImage img = decodeImage(dir / "huge.exr", &report);
     EXPECT_EQ(img.at(0, 0).x, 2.0f);
-    EXPECT_EQ(img.at(0, 0).y, kMaxRadiance) << "+Inf takes the largest value left, the ceiling";
+    EXPECT_EQ(img.at(0, 0).y, kMaxRadiance) << "+Inf takes its row neighbours' mean: both at the ceiling";
     EXPECT_EQ(img.at(5, 5).z, kMaxRadiance);
     EXPECT_EQ(report.hugeCount, static_cast<std::size_t>(w * h * 3 - 2));
     EXPECT_EQ(report.infCount, 1u);

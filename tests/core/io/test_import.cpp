@@ -513,7 +513,7 @@ TEST(ImportDecode, NanInfAndNegativeValuesAreReplacedAndCounted) {
     px[9].y = inf;
     px[10].z = inf;
     px[20] = Rgb(-1.0f, 0.5f, -inf);
-    px[30].x = 4.0f;  // the largest finite value
+    px[30].x = 4.0f;  // the largest finite value: +Inf no longer takes it
     const fs::path file = dir / "bad values.exr";
     writeFloatRgb(file, 16, 8, px);
     const ImportedEnvironment env = loadEnvironment(file);
@@ -533,7 +533,43 @@ TEST(ImportDecode, NanInfAndNegativeValuesAreReplacedAndCounted) {
                     maxValue = std::max(maxValue, v);
                 }
     EXPECT_LE(maxValue, 4.0f);
-    EXPECT_GT(maxValue, 0.5f);  // the +Inf texels became 4, not 0
+    // The +Inf values became their row neighbours' 0.5 (not the image's largest, 4), and the
+    // warning says how much energy each rule changed.
+    EXPECT_NE(env.report.warnings[0].find("by the mean of their row neighbours"), std::string::npos) << env.report.warnings[0];
+}
+
+TEST(ImportDecode, ReplacingNegativesKeepsTheImagesEnergy) {
+    // A held-out HDRI with ringing of its own kind made: every pixel beside a bright one gets a
+    // negative lobe of a tenth of it (as a sharpening filter leaves), written as float. The rule
+    // takes each negative from the nearest positive values in its row: the sanitised image's sum
+    // equals the signed sum of what was written, within float rounding, where clamping to 0 (the
+    // old rule) added the negatives' whole magnitude.
+    TempDir dir;
+    MIPGLOSS_REQUIRE_ASSET(test::asset("env/courtyard.exr"));
+    const DecodedImage map = decodeImage(test::asset("env/courtyard.exr"));
+    std::vector<Rgb> px = map.px;
+    double signedSum = 0.0, negatives = 0.0;
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 1; x + 1 < map.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * map.width + x;
+            if (map.px[i].x > 20.0f && x % 7 == 0) px[i + 1] = -0.1f * map.px[i];
+        }
+    for (const Rgb& p : px) {
+        signedSum += static_cast<double>(p.x) + p.y + p.z;
+        for (int c = 0; c < 3; ++c) negatives += std::max(0.0f, -p[c]);
+    }
+    ASSERT_GT(negatives, 0.0) << "the map has pixels above 20 to ring beside";
+    const fs::path file = dir / "ringing.exr";
+    writeFloatRgb(file, map.width, map.height, px);
+    ImportReport report;
+    const DecodedImage got = decodeImage(file, &report);
+    double sum = 0.0;
+    for (const Rgb& p : got.px) sum += static_cast<double>(p.x) + p.y + p.z;
+    std::printf("[ import ] ringing: negatives %.4g of a signed sum %.6g (%.3f %%); sanitised sum %.6g (%.2e off); "
+                "%s\n", negatives, signedSum, 100.0 * negatives / signedSum, sum, (sum - signedSum) / signedSum,
+                report.warnings.empty() ? "" : report.warnings[0].c_str());
+    EXPECT_NEAR(sum / signedSum, 1.0, 1e-5);
+    EXPECT_GT(report.negativeCount, 0u);
 }
 
 // ---------------------------------------------------------------------------------------------

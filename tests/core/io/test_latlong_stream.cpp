@@ -69,17 +69,15 @@ struct Converted {
     CubeMap cube;
     LatLongStream::Stats stats;
 };
-// The stream given `px` in strips of `rows` rows; `infinite` marks strips holding +Inf.
-Converted streamed(const std::vector<Rgb>& px, int n, int rows, float maxFinite = 0.0f) {
+// The stream given `px` in strips of `rows` rows.
+Converted streamed(const std::vector<Rgb>& px, int n, int rows) {
     LatLongStream stream(kW, kH, n);
     for (int y0 = 0; y0 < kH; y0 += rows) {
         const int y1 = std::min(kH, y0 + rows);
         const std::span<const Rgb> strip(px.data() + index(0, y0), static_cast<std::size_t>(y1 - y0) * kW);
-        bool inf = false;
-        for (const Rgb& p : strip) inf = inf || std::isinf(p.x) || std::isinf(p.y) || std::isinf(p.z);
-        stream.addStrip(y0, y1, strip, inf);
+        stream.addStrip(y0, y1, strip);
     }
-    Converted out{stream.finish(maxFinite, {}, 0.0f, 1.0f), stream.stats()};
+    Converted out{stream.finish({}, 0.0f, 1.0f), stream.stats()};
     std::printf("[stream] strips of %d rows: %d strips, %d kept whole to the end, %d clamped late, %zu candidates "
                 "(%zu corrected), %zu excess\n", rows, out.stats.strips, out.stats.deferred, out.stats.promoted,
                 out.stats.candidates, out.stats.corrected, out.stats.excess);
@@ -113,18 +111,6 @@ TEST(LatLongStream, StripsClampedBeforeTheThresholdIsKnownGiveTheWholeImagesCube
     }
 }
 
-TEST(LatLongStream, AStripHoldingInfinityWaitsForTheLargestFiniteValue) {
-    std::vector<Rgb> px = sky();
-    px[index(100, 600)] = Rgb(std::numeric_limits<float>::infinity(), 1.0f, 1.0f);
-    const float maxFinite = 1e4f;  // the sun's
-    const Converted got = streamed(px, 64, io_detail::kLatLongStripRows, maxFinite);
-    EXPECT_EQ(got.stats.deferred, 2) << "the last and the one with +Inf";
-    px[index(100, 600)].x = maxFinite;
-    const Converted want = streamed(px, 64, kH);
-    EXPECT_EQ(got.stats.excess, 5u);
-    expectSameUpToRounding(got.cube, want.cube, "+Inf in strip 2 vs replaced beforehand");
-}
-
 TEST(LatLongStream, AStripWithManyPixelsAboveItsClampIsKeptWhole) {
     // Ten full rows at 50 in strip 1: its clamp is T_1 ≈ 16 × (0.5 + 0.011 × 50) ≈ 17, so 20480
     // pixels, more than 1/64 of the strip, exceed it.
@@ -148,9 +134,9 @@ TEST(LatLongStream, RefusesStripsOutOfOrderAndAnUnfinishedImage) {
     const std::vector<Rgb> px = sky();
     LatLongStream stream(kW, kH, 64);
     const std::span<const Rgb> strip(px.data(), static_cast<std::size_t>(256) * kW);
-    EXPECT_THROW(stream.addStrip(256, 512, strip, false), std::invalid_argument);
-    stream.addStrip(0, 256, strip, false);
-    EXPECT_THROW(stream.finish(0.0f, {}, 0.0f, 1.0f), std::invalid_argument);
+    EXPECT_THROW(stream.addStrip(256, 512, strip), std::invalid_argument);
+    stream.addStrip(0, 256, strip);
+    EXPECT_THROW(stream.finish({}, 0.0f, 1.0f), std::invalid_argument);
 }
 
 // The previewer and bake read a file this way: decoded strip by strip, each converted in the
