@@ -31,6 +31,7 @@ uniform bool uDiffuseIrradiance;    // the base from the irradiance map (unit 1)
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#include "cube_lod.glsl"
 #include "lobe_stack.glsl"
 
 // Lobe n at direction d (unit; dx, dy its change to the next pixels): the stack's exact lobe
@@ -77,13 +78,15 @@ void main() {
         // λ falls to 0 as the view grazes the surface, with Schlick's (1 - cos θ)^5 weight: the
         // paper's §6 wish that glossy reflections sharpen at grazing angles. Each fragment reads
         // its own lobe from the stack; where the stack does not hold it (near the mirror), the
-        // chain at its level, with the hardware's footprint LOD kept.
+        // chain at its level, with the footprint's level kept.
         float cosTheta = clamp(dot(n, v), 0.0, 1.0);
         float lambda = uLambda * (1.0 - pow(1.0 - cosTheta, 5.0));
         bool complete;
         float shown = footprintLimitedExponent(grazingExponent(lambda), ddx, ddy, complete);
         float level = lambda > 0.0 ? clamp(lambda + uLevelOffset, 0.0, uLastLevel) : 0.0;
-        float footprint = textureQueryLod(uEnvironment, direction).y;
+        // The footprint's level as the specification defines it (cube_lod.glsl): llvmpipe's
+        // textureQueryLod is levels off for cube maps and read a blurry level at the sphere's centre.
+        float footprint = cubeLevelOfDetail(direction, float(textureSize(uEnvironment, 0).x));
         if (uUseStack && lambda > 0.0 && stackHolds(shown))
             colour = stackRead(direction, shown);
         else

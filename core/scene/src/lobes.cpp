@@ -81,9 +81,13 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
     for (const LambdaInUse& l : lambdasInUse(scene)) {
         const auto blend = stackBlend(lambdaToExponent(l.lambda), baseSize);
         if (l.grazing) {
-            // λ falls to 0 at grazing: every entry from the sharpest to this λ's.
+            // λ falls to 0 at grazing: every entry from the sharpest to this λ's, but none of
+            // faces over 512 (a thin rim's near-mirror lobes would cost 150 MB and 10 s at base
+            // 512; the rim reads the chain there).
+            int first = top;
+            while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
             const int last = std::min((blend ? blend->wider : top) + kFootprintReach, kStackLast);
-            for (int j = top; j <= last; ++j) entries.insert(j);
+            for (int j = first; j <= last; ++j) entries.insert(j);
         } else if (blend) {
             // A pixel's footprint only ever widens its lobe (footprintExponent): the entries
             // from the lobe's sharper neighbour to kFootprintReach past its wider one.

@@ -150,8 +150,14 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
     EXPECT_EQ(lobesInUse(scene, 256), withBackground);
     scene.environment.builder = Builder::Box;
     EXPECT_TRUE(lobesInUse(scene, 256).empty()) << "other builders are shown as they are";
-    // The grazing option: from the stack's top to λ 2's entries and the four past them.
+    // The grazing option: from the stack's top to λ 2's entries and the four past them; at base
+    // 512 not the entries of faces over 512 (stackTop 3 has 1024).
     EXPECT_EQ(lobesInUse(sceneOf({glossy(2.0f, true)}), 256), range(stackTop(256), 21));
+    const std::vector<int> grazing512 = lobesInUse(sceneOf({glossy(2.0f, true)}), 512);
+    ASSERT_FALSE(grazing512.empty());
+    EXPECT_GT(grazing512.front(), stackTop(512));
+    EXPECT_LE(lobeCubeSize(stackExponent(grazing512.front()), 512), kGrazingLargestFace);
+    EXPECT_GT(lobeCubeSize(stackExponent(grazing512.front() - 1), 512), kGrazingLargestFace);
     // The end of the stack: n = 0 asks for the last entry only.
     EXPECT_EQ(lobesInUse(sceneOf({glossy(7.9f)}), 256), range(kStackLast, kStackLast));
     // Near: within a level of those in use, nearest first, none repeated or in use.

@@ -70,11 +70,13 @@ struct LobeCube {
 // AOV does not call them exact. On a 512² sphere
 // at n = 1024, 94 % of the pixels are widened by more than 1 % (test_settled_picture.cpp).
 inline constexpr int kFootprintReach = 4;
+// The grazing option asks for no entry whose cube face is larger than this.
+inline constexpr int kGrazingLargestFace = 512;
 
 // The entries the scene shows, ascending: for the λ of every visible object (not a mirror, not
 // using the irradiance map) and of the background when shown and blurred, the two entries its
 // lobe blends and kFootprintReach wider ones; for an object with the grazing option every entry
-// from stackTop to its own λ's and those.
+// from stackTop (or the first of faces up to kGrazingLargestFace) to its own λ's and those.
 // Empty when the environment's builder is not the default (the other builders are there to be
 // compared as they are). `baseSize`: the environment's face size.
 std::vector<int> lobesInUse(const Scene& scene, int baseSize);
