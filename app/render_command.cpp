@@ -53,7 +53,7 @@ const char* const kRenderUsage = R"(
                   [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
                   [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
-                  [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--no-settle] [--quiet]
+                  [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--no-settle | --no-stack] [--quiet]
                   [--spin DEG] [--turntable N] [--turntable-spin object|environment]
                   [--compare-builder NAME] [--compare-env FILE]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr|PATTERN
@@ -111,10 +111,13 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  and the single-lobe channels describe its specular layer
   The picture is the settled one: the lobe stack's entries every lobe in use reads (exact lobes
                  2^(1/4) apart, blended; each pixel's lobe widened by its footprint) are made first.
-  --no-settle    the picture the window shows before those entries arrive instead: every glossy
-                 lobe read from the chain's levels (its AOV marks only mirrors and the irradiance
-                 map exact), so that path can be checked from outside. While a slider moves the
-                 window reads the stack, as the settled picture does, once its entries are made
+  --no-settle    the picture the window shows while a slider moves instead: from the whole stack
+                 as the window makes it ahead (every entry of faces up to 512), so the instant
+                 path can be checked from outside (it is the settled picture: no entry besides
+                 those in use is read)
+  --no-stack     the picture the window shows before any entry has arrived: every glossy lobe
+                 read from the chain's levels (its AOV marks only mirrors and the irradiance map
+                 exact)
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
@@ -123,6 +126,20 @@ bench-render: frame time of N teapots with N different lambdas against the same 
 )";
 
 namespace {
+
+// The lobe stack's entries a render reads from: those the scene's lobes read (the settled
+// picture); with `everything`, also every other the window makes ahead (--no-settle); none with
+// `none` (--no-stack).
+std::vector<std::shared_ptr<const LobeCube>> lobeStackFor(const PreparedEnvironment& environment, const Scene& scene,
+                                                          bool everything, bool none) {
+    std::vector<std::shared_ptr<const LobeCube>> lobes;
+    if (none || !environment.filter) return lobes;
+    lobes = makeLobeCubes(environment, scene);
+    if (everything)
+        for (int index : lobesNear(scene, environment.filter->baseSize()))
+            lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
+    return lobes;
+}
 
 // --size WxH: two whole numbers of at least 1, or a UsageError naming the flag and the value. What
 // the OpenGL can draw is checked once a context exists (checkRenderSize).
@@ -299,7 +316,7 @@ int runRender(Args args, const char* argv0) {
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples;
     std::optional<Builder> builder;
-    bool noBackground = false, quiet = false, noSettle = false;
+    bool noBackground = false, quiet = false, noSettle = false, noStack = false;
     int width = 0, height = 0;
     std::optional<float> spin;
     std::optional<int> turntable;
@@ -361,6 +378,7 @@ int runRender(Args args, const char* argv0) {
         } else if (a == "--no-background") noBackground = true;
         else if (a == "--quiet") quiet = true;
         else if (a == "--no-settle") noSettle = true;
+        else if (a == "--no-stack") noStack = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (!scenePath) scenePath = a;
         else throw UsageError("more than one scene given");
@@ -373,6 +391,7 @@ int runRender(Args args, const char* argv0) {
     if (compare && turntable) throw UsageError(std::string(compareFlag) + " and --turntable do not go together (one picture or a turn)");
     if (compare && aovPath) throw UsageError(std::string(compareFlag) + " and --aov do not go together (the AOV of which half?)");
     if (turntable && aovPath) throw UsageError("--turntable and --aov do not go together");
+    if (noSettle && noStack) throw UsageError("--no-settle and --no-stack do not go together (the stack ahead, or none?)");
     // With --turntable, --out names the frames (frame_pattern.h); the first frame's name stands
     // for all of them in the checks below.
     FramePattern frames;
@@ -479,7 +498,7 @@ int runRender(Args args, const char* argv0) {
     // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
     const std::vector<std::shared_ptr<const LobeCube>> lobes =
-        noSettle ? std::vector<std::shared_ptr<const LobeCube>>{} : makeLobeCubes(*environment, scene);
+        lobeStackFor(*environment, scene, noSettle, noStack);
     const double lobeSeconds = secondsSince(lobesStart);
     renderer.setLobes(lobes);
     // The status line, with the counters of the render that was `plain` (a comparison's left half).
@@ -538,8 +557,7 @@ int runRender(Args args, const char* argv0) {
         if (!quiet)
             for (const std::string& w : otherEnvironment->report.warnings)
                 std::cerr << "mipgloss: warning: " << w << '\n';
-        renderer.setLobes(noSettle ? std::vector<std::shared_ptr<const LobeCube>>{}
-                                   : makeLobeCubes(*otherEnvironment, scene));
+        renderer.setLobes(lobeStackFor(*otherEnvironment, scene, noSettle, noStack));
         const double otherSeconds = secondsSince(otherStart);
         picture = besideEachOther(std::move(picture), draw(renderer, scene, view, otherEnvironment, width, height,
                                                            linear, *outPath));

@@ -99,14 +99,19 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
 
 std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach) {
     const std::vector<int> inUse = lobesInUse(scene, baseSize);
-    const int top = stackTop(baseSize);
+    int first = stackTop(baseSize);
+    while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
+    // Distance to the nearest entry in use (the wide end when none is), ascending, then index.
+    std::vector<std::pair<int, int>> byDistance;
+    for (int j = first; j <= kStackLast; ++j) {
+        if (std::binary_search(inUse.begin(), inUse.end(), j)) continue;
+        int distance = inUse.empty() ? kStackLast - j : kStackSlots;
+        for (int k : inUse) distance = std::min(distance, std::abs(j - k));
+        if (distance <= reach) byDistance.emplace_back(distance, j);
+    }
+    std::sort(byDistance.begin(), byDistance.end());
     std::vector<int> near;
-    for (int step = 1; step <= reach; ++step)
-        for (int j : inUse)
-            for (int k : {j - step, j + step})
-                if (k >= top && k <= kStackLast && !std::binary_search(inUse.begin(), inUse.end(), k) &&
-                    std::find(near.begin(), near.end(), k) == near.end())
-                    near.push_back(k);
+    for (const auto& [distance, j] : byDistance) near.push_back(j);
     return near;
 }
 

@@ -160,14 +160,19 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
     EXPECT_GT(lobeCubeSize(stackExponent(grazing512.front() - 1), 512), kGrazingLargestFace);
     // The end of the stack: n = 0 asks for the last entry only.
     EXPECT_EQ(lobesInUse(sceneOf({glossy(7.9f)}), 256), range(kStackLast, kStackLast));
-    // Near: within a level of those in use, nearest first, none repeated or in use.
+    // Near: the rest of the stack (faces up to 512), nearest first, none repeated or in use.
     const std::vector<int> near = lobesNear(sceneOf({glossy(4.0f)}), 256);  // in use: 32 … 37
-    ASSERT_FALSE(near.empty());
+    ASSERT_EQ(near.size(), static_cast<std::size_t>(kStackLast - stackTop(256) + 1 - 6));
     EXPECT_TRUE(near[0] == 31 || near[0] == 38);
-    for (int j : near) {
-        EXPECT_TRUE(j < 32 || j > 37) << j;
-        EXPECT_TRUE(j >= 24 && j <= 45) << j;
+    for (std::size_t i = 1; i < near.size(); ++i) {
+        auto distance = [](int j) { return j < 32 ? 32 - j : j - 37; };
+        EXPECT_LE(distance(near[i - 1]), distance(near[i]));
+        EXPECT_TRUE(near[i] < 32 || near[i] > 37) << near[i];
     }
+    const std::vector<int> within = lobesNear(sceneOf({glossy(4.0f)}), 256, 8);
+    for (int j : within) EXPECT_TRUE(j >= 24 && j <= 45) << j;
+    // At base 512 no entry of a face over 512 is made ahead.
+    for (int j : lobesNear(sceneOf({glossy(4.0f)}), 512)) EXPECT_LE(lobeCubeSize(stackExponent(j), 512), kGrazingLargestFace);
 }
 
 TEST(LobeStack, EntryIsTheExactConvolutionAtItsCentres) {

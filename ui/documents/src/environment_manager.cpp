@@ -56,8 +56,8 @@ void EnvironmentManager::startLobeJob() {
     // Lobes of an environment that is no longer current go.
     const auto stale = std::erase_if(lobes_, [&](const auto& entry) { return entry.second->filter != current_->filter; });
     if (stale > 0) emit lobesReady();
-    // The stack's entries the scene shows come first, in one job; then those a slider reaches
-    // next (within a level of them), one per job, so moving λ again loses at most one.
+    // The stack's entries the scene shows come first, in one job; then the rest of the stack,
+    // nearest first, one per job, so moving λ again loses at most one.
     const int baseSize = current_->filter->baseSize();
     const std::vector<int> inUse = lobesInUse(document_->scene(), baseSize);
     const std::vector<int> near = lobesNear(document_->scene(), baseSize);
@@ -75,12 +75,11 @@ void EnvironmentManager::startLobeJob() {
     } else if (lobeJob_) {
         lobeJob_->cancel();  // a near entry's job: what is in use goes first
     }
-    // Keep what is within two levels of what is in use (a slider going back and forth finds its
-    // entries again), drop the rest.
-    const std::vector<int> kept = lobesNear(document_->scene(), baseSize, 2 * kStackStepsPerLevel);
+    // Keep what is in use or will be made next (the whole stack of faces up to 512), drop the
+    // rest: sharp entries of a big base no lobe reads any more.
     const auto dropped = std::erase_if(lobes_, [&](const auto& entry) {
         return std::find(inUse.begin(), inUse.end(), entry.first) == inUse.end() &&
-               std::find(kept.begin(), kept.end(), entry.first) == kept.end();
+               std::find(near.begin(), near.end(), entry.first) == near.end();
     });
     if (dropped > 0) emit lobesReady();
     if (missing.empty()) return;

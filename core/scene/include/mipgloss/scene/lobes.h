@@ -10,7 +10,7 @@
 // packs the entries into one 2D atlas, each face with its one-texel border (lobeStackAtlas), and a
 // fragment whose footprint is wider than its lobe reads the wider lobe the footprint makes
 // (docs/lobe-stack.md), never a box mip. Entries are made only for the lobes the scene shows
-// (lobesInUse) and, in the window, those a slider will reach next (lobesNear). Pure C++: the
+// (lobesInUse) and, in the window, then every other, nearest first (lobesNear). Pure C++: the
 // window makes them on its worker, `render` directly.
 #pragma once
 
@@ -70,7 +70,9 @@ struct LobeCube {
 // AOV does not call them exact. On a 512² sphere
 // at n = 1024, 94 % of the pixels are widened by more than 1 % (test_settled_picture.cpp).
 inline constexpr int kFootprintReach = 4;
-// The grazing option asks for no entry whose cube face is larger than this.
+// The grazing option and the window's prefetch (lobesNear) ask for no entry whose cube face is
+// larger than this: the near-mirror entries of a base of 512 or more (faces 527–1024) would take
+// 153 MB and 12 s; they are made only for a lobe in use.
 inline constexpr int kGrazingLargestFace = 512;
 
 // The entries the scene shows, ascending: for the λ of every visible object (not a mirror, not
@@ -80,9 +82,11 @@ inline constexpr int kGrazingLargestFace = 512;
 // Empty when the environment's builder is not the default (the other builders are there to be
 // compared as they are). `baseSize`: the environment's face size.
 std::vector<int> lobesInUse(const Scene& scene, int baseSize);
-// The entries within `reach` steps of those in use and not in use, nearest first: what the window
-// makes after the lobes in use, so a slider moving within a level reads exact lobes at once.
-std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach = kStackStepsPerLevel);
+// The entries within `reach` steps of those in use, not in use and of faces up to
+// kGrazingLargestFace, nearest first: what the window makes after the lobes in use (by default the
+// whole stack), so a slider moving anywhere reads exact lobes at once. With nothing in use, every
+// such entry from the wide end.
+std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach = kStackSlots);
 
 // Entry `index` from the environment's filter. The environment must have been prepared with the
 // default builder (filter set). Throws Cancelled if asked.

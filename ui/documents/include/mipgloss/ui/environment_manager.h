@@ -9,8 +9,8 @@
 // of λ inside the filtered levels, of mode or of tint builds nothing. Once the scene's λ values
 // have rested for kSettleMs, it makes the lobe stack's entries they read (lobes.h, lobesInUse) on
 // the same worker, so the settled picture shows each material's exact lobe; then, one per job and
-// without counting as busy, the entries within a level of them (lobesNear), so a slider moving
-// there reads exact lobes at once.
+// without counting as busy, the rest of the stack nearest first (lobesNear; 2.3 s at face 128,
+// 5.6 s at 256 on 2 cores), so a slider moving anywhere reads exact lobes at once.
 #pragma once
 
 #include "mipgloss/scene/environment.h"
