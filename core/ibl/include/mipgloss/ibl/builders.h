@@ -108,7 +108,8 @@ private:
 
 // The face size of a lobe cube (a lobe stack entry): large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
 // reads between its centres stay within about 1 % (docs/chain-schedule.md), i.e. ceil(√(32 n)),
-// at least 16 (smooth enough that even the widest lobes show no texel structure) and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
+// at least 16 (smooth enough that even the widest lobes show no texel structure; 32 below n = 1,
+// whose kernel is nearly a step at the horizon) and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
 // more coarsely, and the stack stops below them (stackTop).
 int lobeCubeSize(double exponent, int baseSize);
 // True when lobeCubeSize holds the lobe at full width (√(32 n) fits under the cap).
