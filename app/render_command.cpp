@@ -134,10 +134,13 @@ std::vector<std::shared_ptr<const LobeCube>> lobeStackFor(const PreparedEnvironm
                                                           bool everything, bool none) {
     std::vector<std::shared_ptr<const LobeCube>> lobes;
     if (none || !environment.filter) return lobes;
-    lobes = makeLobeCubes(environment, scene);
-    if (everything)
-        for (int index : lobesNear(scene, environment.filter->baseSize()))
-            lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
+    const int baseSize = environment.filter->baseSize();
+    std::vector<int> indices = lobesInUse(scene, baseSize);
+    if (everything) {
+        const std::vector<int> ahead = lobesNear(indices, baseSize);
+        indices.insert(indices.end(), ahead.begin(), ahead.end());
+    }
+    for (int index : indices) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
     return lobes;
 }
 

@@ -39,15 +39,25 @@ vec3 stackEntryAt(int j, vec3 d) {
 // λ(n) = log2(128·√3) − ½·log2(n + 1) (phong.h), for finding n's neighbours.
 float stackLambdaOf(float n) { return 0.5 * log2(LAMBDA_EXPONENT_SCALE) - 0.5 * log2(n + 1.0); }
 
+// Whether lobe n is one the stack can hold (finite, not sharper than its top entry).
+bool stackRange(float n) { return n >= 0.0 && !isinf(n) && n <= uStackExponent[uStackTop]; }
+
+// The entry on n's sharper side (stackBlend in lobes.h): the last from the top whose lobe is at
+// least as sharp. n must be in stackRange.
+int stackSharperIndex(float n) {
+    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
+    if (j > uStackTop && uStackExponent[j] < n) --j;
+    if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
+    return j;
+}
+
 // n's neighbours and the wider one's weight; false when the stack does not hold both (n sharper
 // than its top entry, or an entry not yet made).
 bool stackBlendOf(float n, out int sharper, out float weight) {
     sharper = 0;
     weight = 0.0;
-    if (!(n >= 0.0) || isinf(n) || n > uStackExponent[uStackTop]) return false;
-    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
-    if (j > uStackTop && uStackExponent[j] < n) --j;
-    if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
+    if (!stackRange(n)) return false;
+    int j = stackSharperIndex(n);
     int wider = min(j + 1, STACK_LAST);
     float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[j] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
     weight = u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
@@ -91,11 +101,8 @@ float footprintExponent(float n, vec3 dx, vec3 dy) {
 float footprintLimitedExponent(float n, vec3 dx, vec3 dy, out bool complete) {
     float shown = footprintExponent(n, dx, dy);
     complete = true;
-    if (!(n >= 0.0) || isinf(n) || n > uStackExponent[uStackTop]) return shown;
-    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
-    if (j > uStackTop && uStackExponent[j] < n) --j;
-    if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
-    float widest = uStackExponent[min(j + 1 + STACK_FOOTPRINT_REACH, STACK_LAST)];
+    if (!stackRange(n)) return shown;
+    float widest = uStackExponent[min(stackSharperIndex(n) + 1 + STACK_FOOTPRINT_REACH, STACK_LAST)];
     if (shown < widest) {
         complete = shown >= widest * 0.999;
         shown = widest;

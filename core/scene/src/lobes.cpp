@@ -42,6 +42,12 @@ std::optional<StackBlend> stackBlend(double exponent, int baseSize) {
     return StackBlend{sharper, wider, weight};
 }
 
+int firstEntryMadeAhead(int baseSize) {
+    int first = stackTop(baseSize);
+    while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
+    return first;
+}
+
 double footprintExponent(double exponent, double dx, double dy) {
     if (!(exponent >= 0.0)) return exponent;
     const double u = (std::isinf(exponent) ? 0.0 : oneMinusMeanCosine(exponent)) + (dx * dx + dy * dy) / 24.0;
@@ -84,8 +90,7 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
             // λ falls to 0 at grazing: every entry from the sharpest to this λ's, but none of
             // faces over 512 (a thin rim's near-mirror lobes would cost 150 MB and 10 s at base
             // 512; the rim reads the chain there).
-            int first = top;
-            while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
+            const int first = firstEntryMadeAhead(baseSize);
             const int last = std::min((blend ? blend->wider : top) + kFootprintReach, kStackLast);
             for (int j = first; j <= last; ++j) entries.insert(j);
         } else if (blend) {
@@ -97,10 +102,8 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
     return {entries.begin(), entries.end()};
 }
 
-std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach) {
-    const std::vector<int> inUse = lobesInUse(scene, baseSize);
-    int first = stackTop(baseSize);
-    while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
+std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reach) {
+    const int first = firstEntryMadeAhead(baseSize);
     // Distance to the nearest entry in use (the wide end when none is), ascending, then index.
     std::vector<std::pair<int, int>> byDistance;
     for (int j = first; j <= kStackLast; ++j) {

@@ -1,6 +1,7 @@
 // The lobe stack (lobes.h, docs/lobe-stack.md): its grid, the band-1 blend of neighbours, the
 // footprint's widening, which entries a scene asks for, the atlas, and how close a blend of exact
 // neighbours comes to the exact lobe between them on held-out maps.
+#include "sphere_scene.h"
 #include "test_support.h"
 
 #include "mipgloss/ibl/builders.h"
@@ -27,14 +28,9 @@ Material glossy(float lambda, bool grazing = false) {
     return m;
 }
 
+// Spheres wearing `materials`, the background hidden (it would add its own lobe).
 Scene sceneOf(const std::vector<Material>& materials) {
-    Scene scene;
-    auto mesh = std::make_shared<const Mesh>(makeSphere(8, 8));
-    for (const Material& m : materials) {
-        SceneObject o;
-        o.mesh = mesh;
-        scene.addObject(o, m);
-    }
+    Scene scene = test::spheresWearing(materials);
     scene.display.showBackground = false;
     return scene;
 }
@@ -156,12 +152,15 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
     const std::vector<int> grazing512 = lobesInUse(sceneOf({glossy(2.0f, true)}), 512);
     ASSERT_FALSE(grazing512.empty());
     EXPECT_GT(grazing512.front(), stackTop(512));
+    EXPECT_EQ(grazing512.front(), firstEntryMadeAhead(512));
     EXPECT_LE(lobeCubeSize(stackExponent(grazing512.front()), 512), kGrazingLargestFace);
     EXPECT_GT(lobeCubeSize(stackExponent(grazing512.front() - 1), 512), kGrazingLargestFace);
     // The end of the stack: n = 0 asks for the last entry only.
     EXPECT_EQ(lobesInUse(sceneOf({glossy(7.9f)}), 256), range(kStackLast, kStackLast));
     // Near: the rest of the stack (faces up to 512), nearest first, none repeated or in use.
-    const std::vector<int> near = lobesNear(sceneOf({glossy(4.0f)}), 256);  // in use: 32 … 37
+    const std::vector<int> inUse = lobesInUse(sceneOf({glossy(4.0f)}), 256);
+    ASSERT_EQ(inUse, range(32, 37));
+    const std::vector<int> near = lobesNear(inUse, 256);
     ASSERT_EQ(near.size(), static_cast<std::size_t>(kStackLast - stackTop(256) + 1 - 6));
     EXPECT_TRUE(near[0] == 31 || near[0] == 38);
     for (std::size_t i = 1; i < near.size(); ++i) {
@@ -169,10 +168,11 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
         EXPECT_LE(distance(near[i - 1]), distance(near[i]));
         EXPECT_TRUE(near[i] < 32 || near[i] > 37) << near[i];
     }
-    const std::vector<int> within = lobesNear(sceneOf({glossy(4.0f)}), 256, 8);
+    const std::vector<int> within = lobesNear(inUse, 256, 8);
     for (int j : within) EXPECT_TRUE(j >= 24 && j <= 45) << j;
     // At base 512 no entry of a face over 512 is made ahead.
-    for (int j : lobesNear(sceneOf({glossy(4.0f)}), 512)) EXPECT_LE(lobeCubeSize(stackExponent(j), 512), kGrazingLargestFace);
+    for (int j : lobesNear(lobesInUse(sceneOf({glossy(4.0f)}), 512), 512))
+        EXPECT_LE(lobeCubeSize(stackExponent(j), 512), kGrazingLargestFace);
 }
 
 TEST(LobeStack, EntryIsTheExactConvolutionAtItsCentres) {

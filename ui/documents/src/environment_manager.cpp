@@ -60,7 +60,7 @@ void EnvironmentManager::startLobeJob() {
     // nearest first, one per job, so moving λ again loses at most one.
     const int baseSize = current_->filter->baseSize();
     const std::vector<int> inUse = lobesInUse(document_->scene(), baseSize);
-    const std::vector<int> near = lobesNear(document_->scene(), baseSize);
+    const std::vector<int> near = lobesNear(inUse, baseSize);
     std::vector<int> missing;
     for (int index : inUse)
         if (!lobes_.count(index)) missing.push_back(index);

@@ -82,11 +82,13 @@ inline constexpr int kGrazingLargestFace = 512;
 // Empty when the environment's builder is not the default (the other builders are there to be
 // compared as they are). `baseSize`: the environment's face size.
 std::vector<int> lobesInUse(const Scene& scene, int baseSize);
-// The entries within `reach` steps of those in use, not in use and of faces up to
-// kGrazingLargestFace, nearest first: what the window makes after the lobes in use (by default the
-// whole stack), so a slider moving anywhere reads exact lobes at once. With nothing in use, every
-// such entry from the wide end.
-std::vector<int> lobesNear(const Scene& scene, int baseSize, int reach = kStackSlots);
+// The first entry of a face up to kGrazingLargestFace: where what is made ahead begins.
+int firstEntryMadeAhead(int baseSize);
+// The entries within `reach` steps of those in use (`inUse`, ascending: lobesInUse), not in use and
+// from firstEntryMadeAhead on, nearest first: what the window makes after the lobes in use (by
+// default the whole stack), so a slider moving anywhere reads exact lobes at once. With nothing in
+// use, every such entry from the wide end.
+std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reach = kStackSlots);
 
 // Entry `index` from the environment's filter. The environment must have been prepared with the
 // default builder (filter set). Throws Cancelled if asked.
