@@ -1,6 +1,7 @@
 // Helpers for the widget tests: real key input and waiting on the event loop.
 #pragma once
 
+#include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/main_window.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 
 namespace mipgloss::test {
 
@@ -35,6 +37,15 @@ inline bool waitUntil(const std::function<bool()>& done, int timeoutMs) {
         QTest::qWait(10);
     }
     return true;
+}
+
+// The embedded courtyard (or `source`) at a face of 32, so an environment manager's builds and
+// the thumbnails' environment are quick to make.
+inline EnvironmentSettings smallEnvironment(const std::string& source = kBuiltinEnvironment) {
+    EnvironmentSettings settings;
+    settings.source = source;
+    settings.faceSize = 32;
+    return settings;
 }
 
 // A window that keeps to the test's folders (QStandardPaths test mode: autosaves, settings) and

@@ -1,4 +1,5 @@
 // The scene model, the camera maths and "build only what the scene needs".
+#include "sphere_scene.h"
 #include "test_support.h"
 
 #include "mipgloss/ibl/builders.h"
@@ -112,16 +113,7 @@ Material lobe(float lambda, LookupMode mode = LookupMode::Reflect, bool useIrrad
     return m;
 }
 
-Scene sceneWith(std::initializer_list<Material> materials) {
-    Scene scene;
-    auto sphere = std::make_shared<const Mesh>(makeSphere(8, 16));
-    for (const Material& m : materials) {
-        SceneObject o;
-        o.mesh = sphere;
-        scene.addObject(o, m);
-    }
-    return scene;
-}
+Scene sceneWith(std::initializer_list<Material> materials) { return test::spheresWearing(materials); }
 
 // The deepest chain level a λ is read at on a base of `n`, rounded up (what chainNeeds promises).
 int levelFor(float lambda, int n) {

@@ -43,6 +43,7 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::smallEnvironment;
 using mipgloss::test::sphereObject;
 namespace fs = std::filesystem;
 
@@ -87,14 +88,6 @@ void expectRowsMatch(const LibraryModel& model, const LibraryDocument& doc) {
     ASSERT_EQ(model.rowCount(), doc.count());
     for (int row = 0; row < doc.count(); ++row)
         EXPECT_EQ(model.data(model.index(row)).toString().toStdString(), doc.entry(row).name) << "row " << row;
-}
-
-// The embedded courtyard at a small size, so the manager's builds are quick.
-EnvironmentSettings smallEnvironment(const std::string& source = kBuiltinEnvironment) {
-    EnvironmentSettings settings;
-    settings.source = source;
-    settings.faceSize = 32;
-    return settings;
 }
 
 // A drag over `widget` to `at` and a drop there, as Qt delivers them: enter, move, drop.

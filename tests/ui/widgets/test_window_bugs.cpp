@@ -42,6 +42,7 @@ using namespace mipgloss::ui;
 namespace fs = std::filesystem;
 using mipgloss::test::typeInto;
 using mipgloss::test::openWindow;
+using mipgloss::test::smallEnvironment;
 using mipgloss::test::waitUntil;
 
 namespace {
@@ -76,14 +77,6 @@ QWidget* banner(MainWindow& w) { return w.findChild<QWidget*>(QStringLiteral("me
 void writeFile(const fs::path& path, const std::string& bytes) { test::writeBytes(path, bytes); }
 
 QString qstr(const fs::path& path) { return QString::fromStdString(path.string()); }
-
-// The embedded courtyard at a small size, so the thumbnails' environment is quick to make.
-EnvironmentSettings smallEnvironment() {
-    EnvironmentSettings settings;
-    settings.source = kBuiltinEnvironment;
-    settings.faceSize = 32;
-    return settings;
-}
 
 LibraryMaterial orange(const std::string& name) {
     LibraryMaterial e;
