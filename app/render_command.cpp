@@ -5,6 +5,7 @@
 #include "offscreen_session.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/scene/asset.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
 #include "mipgloss/scene/lobes.h"
@@ -14,6 +15,7 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/scene.h"
+#include "mipgloss/scene/textures.h"
 #include "mipgloss/scene/turntable.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/library_file.h"
@@ -432,16 +434,11 @@ int runRender(Args args, const char* argv0) {
         scene.objects.clear();
         float cursor = 0.0f;
         for (const fs::path& p : meshPaths) {
-            MeshReport report;
-            auto mesh = std::make_shared<const Mesh>(loadMesh(p, &report));
+            // An asset (glTF, OBJ with MTL) brings its parts and materials; a plain mesh is one part.
+            const Asset asset = loadAsset(p);
             if (!quiet)
-                for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
-            SceneObject object;
-            object.name = mesh->name;
-            object.meshSource = p.string();
-            object.transform = nextInRow(mesh->bounds, cursor);
-            object.mesh = std::move(mesh);
-            scene.addObject(std::move(object), Material{});
+                for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+            addAsset(scene, asset, p.string(), nextInRow(assetBounds(asset), cursor), Material{});
         }
     }
     if (libraryMaterialEntry) {
@@ -471,6 +468,13 @@ int runRender(Args args, const char* argv0) {
     if (width == 0) width = 800, height = 600;
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     const bool linear = lowerExtension(firstOut) == ".exr";
+
+    // The materials' texture maps, decoded on worker threads (textures.h); one that cannot be read
+    // is a warning, and the maps reading it are drawn without it.
+    const auto texturesStart = std::chrono::steady_clock::now();
+    for (const std::string& w : sharedTextureCache().load(texturesOf(scene)))
+        if (!quiet) std::cerr << "mipgloss: warning: " << w << '\n';
+    const double textureSeconds = secondsSince(texturesStart);
 
     const auto start = std::chrono::steady_clock::now();
     auto environment = std::make_shared<const PreparedEnvironment>(
@@ -517,7 +521,12 @@ int runRender(Args args, const char* argv0) {
                   << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
                   << " lobe stack entries made in " << lobeSeconds << " s (" << static_cast<double>(c.stackBytes) / 1e6
                   << " MB on the GPU; " << c.objectsSettled
-                  << " objects settled), environment prepared in " << prepareSeconds << " s" << extra << "; "
+                  << " objects settled), environment prepared in " << prepareSeconds << " s"
+                  << (c.textureUploads > 0 ? ", " + std::to_string(sharedTextureCache().images()) + " textures decoded in " +
+                                                 std::to_string(textureSeconds) + " s (" +
+                                                 std::to_string(c.textureBytes / 1000000) + " MB on the GPU)"
+                                           : std::string())
+                  << extra << "; "
                   << renderer.glDescription() << '\n';
     };
 

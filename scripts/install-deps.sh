@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
-  libopenimageio-dev openimageio-tools libglm-dev libopenmesh-dev libtbb-dev
+  libopenimageio-dev openimageio-tools libglm-dev libopenmesh-dev libtbb-dev libtinygltf-dev
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-svg-dev libgl-dev
   libgtest-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri qt6-qpa-plugins
 )

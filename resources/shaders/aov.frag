@@ -26,6 +26,7 @@ uniform bool uDiffuseIrradiance;
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#include "material_maps.glsl"
 #include "cube_lod.glsl"
 #include "lobe_stack.glsl"
 
@@ -70,6 +71,41 @@ void main() {
     aovSpecularWeight = vec4(0.0);
     aovCoatDirection = vec4(0.0);
     aovCoatWeight = vec4(0.0);
+    if (uLayered && uHasMaps) {
+        // object.frag's mapped branch: the mapped normal's directions, each fragment's own
+        // specular lobe from the roughness map, the weights from the mapped base colour and
+        // metallic, times the occlusion. Emission is not a lobe: an emitting pixel is not exact.
+        MaterialSample s = sampleMaterial(n);
+        vec3 mn = s.normal;
+        float mCos = clamp(dot(mn, v), 0.0, 1.0);
+        vec3 mr = normalize(uEnvironmentRotation * reflect(-v, mn));
+        vec3 mnormal = normalize(uEnvironmentRotation * mn);
+        vec3 mrdx = dFdx(mr), mrdy = dFdy(mr), mndx = dFdx(mnormal), mndy = dFdy(mnormal);
+        float exponent = uUseRoughnessMap ? roughnessExponent(s.roughness) : uExponent;
+        vec3 wDiffuse, wSpecular, wCoat;
+        layerWeightsOf(mCos, mix(vec3(uSpecular), s.baseColor, s.metallic), s.baseColor * (1.0 - s.metallic),
+                       uUseRoughnessMap ? exponentLambda(exponent) : uSpecularLambda, wDiffuse, wSpecular, wCoat);
+        float specularShown, diffuseShown = 1.0, coatShown = uCoatExponent;
+        bool exact = lobeRead(uUseStack, exponent, mr, mrdx, mrdy, uEnvironment, specularShown);
+        if (uDiffuseIrradiance)
+            exact = exact && baseOnly(uIrradiance, mnormal);
+        else
+            exact = lobeRead(uUseDiffuseStack, 1.0, mnormal, mndx, mndy, uEnvironment, diffuseShown) && exact;
+        if (uCoat > 0.0)
+            exact = lobeRead(uUseCoatStack, uCoatExponent, mr, mrdx, mrdy, uCoatChain, coatShown) && exact;
+        exact = exact && all(equal(s.emissive, vec3(0.0)));
+        if (s.cut) discard;
+        aovDirection = vec4(mr, specularShown);
+        aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
+        aovDiffuseDirection = vec4(mnormal, diffuseShown);
+        aovDiffuseWeight = vec4(s.occlusion * wDiffuse, mCos);
+        aovSpecularWeight = vec4(s.occlusion * wSpecular, 0.0);
+        if (uCoat > 0.0) {
+            aovCoatDirection = vec4(mr, coatShown);
+            aovCoatWeight = vec4(s.occlusion * wCoat, 0.0);
+        }
+        return;
+    }
     if (uLayered) {
         vec3 wDiffuse, wSpecular, wCoat;
         layerWeights(cosView, wDiffuse, wSpecular, wCoat);

@@ -21,10 +21,13 @@ vec2 splitSum(float lambda, float cosView) {
     return texture(uSplitSum, uv).rg;
 }
 
-// What each layer's lobe value is multiplied by at N·v = cosView (layered.h).
-void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 coat) {
-    vec2 s = splitSum(uSpecularLambda, cosView);
-    vec3 specularAlbedo = uF0 * s.x + s.y;
+// What each layer's lobe value is multiplied by at N·v = cosView (layered.h), for a specular
+// layer of F0 `f0` at λ `specularLambda` over a base of `diffuseColour` (a texture-mapped
+// material's, per fragment).
+void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float specularLambda, out vec3 diffuse,
+                    out vec3 specular, out vec3 coat) {
+    vec2 s = splitSum(specularLambda, cosView);
+    vec3 specularAlbedo = f0 * s.x + s.y;
     float coatAlbedo = 0.0;
     if (uCoat > 0.0) {
         vec2 c = splitSum(uCoatLambda, cosView);
@@ -32,5 +35,10 @@ void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 c
     }
     coat = vec3(coatAlbedo);
     specular = (1.0 - coatAlbedo) * specularAlbedo;
-    diffuse = (1.0 - coatAlbedo) * (1.0 - specularAlbedo) * uDiffuseColour;
+    diffuse = (1.0 - coatAlbedo) * (1.0 - specularAlbedo) * diffuseColour;
+}
+
+// The same for the material's uniforms (no maps).
+void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 coat) {
+    layerWeightsOf(cosView, uF0, uDiffuseColour, uSpecularLambda, diffuse, specular, coat);
 }

@@ -31,6 +31,7 @@ uniform bool uDiffuseIrradiance;    // the base from the irradiance map (unit 1)
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#include "material_maps.glsl"
 #include "cube_lod.glsl"
 #include "lobe_stack.glsl"
 
@@ -46,6 +47,18 @@ vec3 readLobe(samplerCube chain, bool useStack, float n, vec3 d, vec3 dx, vec3 d
     return textureGrad(chain, d, dx, dy).rgb;
 }
 
+// Lobe n chosen per fragment (a roughness map): the stack's exact lobe where it holds it, else the
+// chain at n's own level, never sharper than the footprint's (the grazing option's rule below).
+vec3 readLobePerFragment(float n, vec3 d, vec3 dx, vec3 dy) {
+    bool complete;
+    float shown = footprintLimitedExponent(n, dx, dy, complete);
+    if (uUseStack && stackHolds(shown)) return stackRead(d, shown);
+    float lambda = exponentLambda(n);
+    float level = lambda > 0.0 ? clamp(lambda + uLevelOffset, 0.0, uLastLevel) : 0.0;
+    float footprint = cubeLevelOfDetail(d, float(textureSize(uEnvironment, 0).x));
+    return textureLod(uEnvironment, d, max(level, footprint)).rgb;
+}
+
 layout(location = 0) out vec4 fragColour;
 
 void main() {
@@ -57,6 +70,28 @@ void main() {
     vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
     vec3 normal = normalize(uEnvironmentRotation * n);
     vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
+    if (uLayered && uHasMaps) {
+        // Texture maps (material_maps.glsl): the mapped normal gives both lookup directions, the
+        // mapped roughness each fragment's own specular lobe, base colour and metallic its weights.
+        MaterialSample s = sampleMaterial(n);
+        vec3 mn = s.normal;
+        vec3 mr = normalize(uEnvironmentRotation * reflect(-v, mn));
+        vec3 mnormal = normalize(uEnvironmentRotation * mn);
+        vec3 mrdx = dFdx(mr), mrdy = dFdy(mr), mndx = dFdx(mnormal), mndy = dFdy(mnormal);
+        float exponent = uUseRoughnessMap ? roughnessExponent(s.roughness) : uExponent;
+        vec3 f0 = mix(vec3(uSpecular), s.baseColor, s.metallic);
+        vec3 wDiffuse, wSpecular, wCoat;
+        layerWeightsOf(clamp(dot(mn, v), 0.0, 1.0), f0, s.baseColor * (1.0 - s.metallic),
+                       uUseRoughnessMap ? exponentLambda(exponent) : uSpecularLambda, wDiffuse, wSpecular, wCoat);
+        vec3 diffuse = uDiffuseIrradiance ? texture(uIrradiance, mnormal).rgb
+                                          : readLobe(uDiffuseChain, uUseDiffuseStack, 1.0, mnormal, mndx, mndy);
+        vec3 specular = uUseRoughnessMap ? readLobePerFragment(exponent, mr, mrdx, mrdy)
+                                         : readLobe(uEnvironment, uUseStack, uExponent, mr, mrdx, mrdy);
+        vec3 coat = uCoat > 0.0 ? readLobe(uCoatChain, uUseCoatStack, uCoatExponent, mr, mrdx, mrdy) : vec3(0.0);
+        if (s.cut) discard;
+        fragColour = vec4(s.occlusion * (wDiffuse * diffuse + wSpecular * specular + wCoat * coat) + s.emissive, 1.0);
+        return;
+    }
     if (uLayered) {
         vec3 wDiffuse, wSpecular, wCoat;
         layerWeights(clamp(dot(n, v), 0.0, 1.0), wDiffuse, wSpecular, wCoat);

@@ -183,7 +183,7 @@ MaterialLibrary starterLibrary() {
                        float coatRoughness = 0.05f, float specular = 0.04f) {
         Material m;
         m.layered = true;
-        m.layers = {base, metallic, roughness, specular, coat, coatRoughness};
+        m.layers = {base, metallic, roughness, specular, coat, coatRoughness, MaterialMaps{}};
         library.entries.push_back({name, m});
     };
     // Metals: the base colour is F0 (linear sRGB of measured reflectance, as glTF's samples use).

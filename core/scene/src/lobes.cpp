@@ -74,7 +74,11 @@ std::vector<LambdaInUse> lambdasInUse(const Scene& scene) {
         const Material& m = scene.materialOf(object);
         if (!m.layered && m.mode == LookupMode::Normal && m.useIrradiance) continue;
         const bool grazing = !m.layered && m.sharperAtGrazing && m.mode == LookupMode::Reflect;
-        for (const double lambda : lambdasOf(m)) use(lambda, grazing);
+        // A roughness map gives each fragment a roughness in [0, factor]: like the grazing
+        // option, every lobe from the sharpest to the factor's.
+        const bool mapped = m.layered && !m.layers.maps.roughness.empty();
+        const double mappedLambda = mapped ? specularLambda(m.layers) : -1.0;
+        for (const double lambda : lambdasOf(m)) use(lambda, grazing || lambda == mappedLambda);
     }
     return out;
 }

@@ -44,6 +44,10 @@ namespace mipgloss {
 
 bool Mesh::isValid() const {
     if (normals.size() != positions.size() || indices.size() % 3 != 0) return false;
+    if (!uvs.empty() && uvs.size() != positions.size()) return false;
+    if (!tangents.empty() && tangents.size() != positions.size()) return false;
+    for (const glm::vec2& t : uvs)
+        if (!std::isfinite(t.x) || !std::isfinite(t.y)) return false;
     for (std::uint32_t i : indices)
         if (i >= positions.size()) return false;
     auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
@@ -309,6 +313,51 @@ void computeVertexNormals(Mesh& mesh) {
         const double length = glm::length(sum[v]);
         mesh.normals[v] =
             length > 0.0 && std::isfinite(length) ? glm::vec3(sum[v] / length) : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+}
+
+void computeTangents(Mesh& mesh) {
+    const std::size_t n = mesh.positions.size();
+    if (mesh.uvs.size() != n || mesh.normals.size() != n) {
+        mesh.tangents.clear();
+        return;
+    }
+    // Per triangle: T, B with dp1 = du1·T + dv1·B, dp2 = du2·T + dv2·B (Lengyel), each corner's
+    // share weighted by its angle, as MikkTSpace weights them.
+    std::vector<glm::dvec3> tangent(n, glm::dvec3(0.0)), bitangent(n, glm::dvec3(0.0));
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+        const glm::dvec3 p0(mesh.positions[v[0]]), p1(mesh.positions[v[1]]), p2(mesh.positions[v[2]]);
+        const glm::dvec2 t0(mesh.uvs[v[0]]), t1(mesh.uvs[v[1]]), t2(mesh.uvs[v[2]]);
+        const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
+        const glm::dvec2 d1 = t1 - t0, d2 = t2 - t0;
+        const double det = d1.x * d2.y - d2.x * d1.y;
+        if (!(std::abs(det) > 1e-20) || !std::isfinite(det)) continue;
+        const glm::dvec3 ft = (e1 * d2.y - e2 * d1.y) / det;
+        const glm::dvec3 fb = (e2 * d1.x - e1 * d2.x) / det;
+        const glm::dvec3 ps[3] = {p0, p1, p2};
+        for (int c = 0; c < 3; ++c) {
+            const glm::dvec3 a = ps[(c + 1) % 3] - ps[c], b = ps[(c + 2) % 3] - ps[c];
+            const double la = glm::length(a), lb = glm::length(b);
+            if (!(la > 0.0 && lb > 0.0)) continue;
+            const double angle = std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
+            tangent[v[c]] += angle * ft;
+            bitangent[v[c]] += angle * fb;
+        }
+    }
+    mesh.tangents.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec3 normal(mesh.normals[i]);
+        glm::dvec3 tan = tangent[i] - normal * glm::dot(normal, tangent[i]);
+        double length = glm::length(tan);
+        if (!(length > 1e-12) || !std::isfinite(length)) {
+            // Any direction perpendicular to the normal.
+            tan = glm::cross(std::abs(normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), normal);
+            length = glm::length(tan);
+        }
+        tan /= length;
+        const double handedness = glm::dot(glm::cross(normal, tan), bitangent[i]) < 0.0 ? -1.0 : 1.0;
+        mesh.tangents[i] = glm::vec4(glm::vec3(tan), static_cast<float>(handedness));
     }
 }
 

@@ -52,7 +52,64 @@ std::string layersProblem(const Layers& layers) {
             text << name << ' ' << value << " is not in [0, 1]";
             return text.str();
         }
+    const MaterialMaps& m = layers.maps;
+    const std::pair<const char*, float> maps[] = {
+        {"base alpha", m.baseAlpha},
+        {"alpha cutoff", m.alphaCutoff},
+        {"occlusion strength", m.occlusionStrength},
+    };
+    for (const auto& [name, value] : maps)
+        if (!(std::isfinite(value) && value >= 0.0f && value <= 1.0f)) {
+            std::ostringstream text;
+            text << name << ' ' << value << " is not in [0, 1]";
+            return text.str();
+        }
+    // A normal map's scale may be negative (a flipped green channel) but stays a tilt, not a blow-up.
+    if (!(std::isfinite(m.normalScale) && std::abs(m.normalScale) <= kMaxNormalScale)) {
+        std::ostringstream text;
+        text << "normal scale " << m.normalScale << " is not in [-" << kMaxNormalScale << ", " << kMaxNormalScale << "]";
+        return text.str();
+    }
+    for (float e : {m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b})
+        if (!(std::isfinite(e) && e >= 0.0f && e <= kMaxEmissive)) {
+            std::ostringstream text;
+            text << "emissive " << e << " is not in [0, " << kMaxEmissive << "]";
+            return text.str();
+        }
+    for (const TextureRef& t : m.textures())
+        if (t.channel < 0 || t.channel > 3) return "texture " + t.key() + " reads channel " + std::to_string(t.channel) + " (0 to 3)";
     return {};
+}
+
+std::string TextureRef::key() const {
+    return image < 0 ? file : file + "#image " + std::to_string(image);
+}
+
+const char* alphaModeName(AlphaMode mode) {
+    switch (mode) {
+        case AlphaMode::Opaque: return "opaque";
+        case AlphaMode::Mask: return "mask";
+        case AlphaMode::Blend: return "blend";
+    }
+    return "opaque";
+}
+
+bool parseAlphaMode(const std::string& text, AlphaMode& out) {
+    for (AlphaMode m : {AlphaMode::Opaque, AlphaMode::Mask, AlphaMode::Blend})
+        if (text == alphaModeName(m)) {
+            out = m;
+            return true;
+        }
+    return false;
+}
+
+bool MaterialMaps::anyTexture() const { return !textures().empty(); }
+
+std::vector<TextureRef> MaterialMaps::textures() const {
+    std::vector<TextureRef> out;
+    for (const TextureRef* t : {&baseColor, &metallic, &roughness, &normal, &occlusion, &emissive})
+        if (!t->empty()) out.push_back(*t);
+    return out;
 }
 
 const char* toneMapName(ToneMap map) {

@@ -6,6 +6,7 @@
 #include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/lookup_plan.h"
+#include "mipgloss/scene/textures.h"
 
 #include <QFile>
 #include <QOpenGLContext>
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 namespace mipgloss::ui {
@@ -65,7 +67,22 @@ struct Renderer::Impl {
 
     // Texture units besides 0 (the chain) and 1 (the irradiance map).
     static constexpr GLuint kStackUnit = 2, kSplitSumUnit = 3, kCoatChainUnit = 4, kDiffuseChainUnit = 6;
+    // A material's texture maps (material_maps.glsl): base colour, metallic, roughness, normal,
+    // occlusion, emissive.
+    static constexpr GLuint kFirstMapUnit = 8;
+    static constexpr int kMapCount = 6;
+
+    // Texture maps on the GPU, one per decoded image and colour space (sRGB for base colour and
+    // emission, linear for the rest), mip-mapped and anisotropically filtered; the decoded image
+    // is kept alive here while its texture is (TextureCache hands out the same pointer).
+    struct GpuTexture {
+        std::shared_ptr<const TextureImage> image;
+        GLuint texture = 0;
+    };
+    std::map<std::pair<std::string, bool>, GpuTexture> mapTextures;
+    float maxAnisotropy = -1.0f;  // queried once: 0 when the GL has no anisotropic filtering
     GLuint splitSumTexture = 0;      // the split-sum table (specular.h), once a layered material is drawn
+    GLuint whiteTexture = 0;         // 1×1 white: what a map unit holds when the material has no such map
 
     std::map<int, GLuint> samplers;  // level key -> sampler with GL_TEXTURE_MIN_LOD = that level
 
@@ -197,13 +214,155 @@ struct Renderer::Impl {
         bool fromChain = false;
     };
 
+    // The GL texture of map `ref` (sRGB or linear), uploaded the first time; 0 when its image is
+    // not decoded (yet, or refused: TextureCache::problem).
+    GLuint mapTexture(const TextureRef& ref, bool srgb) {
+        if (ref.empty()) return 0;
+        TextureRef image = ref;
+        image.channel = 0;
+        const auto key = std::make_pair(image.key(), srgb);
+        const std::shared_ptr<const TextureImage> decoded = sharedTextureCache().find(image);
+        auto it = mapTextures.find(key);
+        if (it != mapTextures.end() && it->second.image == decoded) return it->second.texture;
+        if (it != mapTextures.end()) {
+            gl->glDeleteTextures(1, &it->second.texture);
+            mapTextures.erase(it);
+        }
+        if (!decoded || decoded->width <= 0 || decoded->height <= 0) return 0;
+        GpuTexture g;
+        g.image = decoded;
+        gl->glGenTextures(1, &g.texture);
+        gl->glBindTexture(GL_TEXTURE_2D, g.texture);
+        gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, decoded->width, decoded->height, 0, GL_RGBA,
+                         GL_UNSIGNED_BYTE, decoded->rgba.data());
+        gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl->glGenerateMipmap(GL_TEXTURE_2D);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        if (maxAnisotropy < 0.0f) {
+            // GL_TEXTURE_MAX_ANISOTROPY (core in 4.6, EXT_texture_filter_anisotropic before).
+            GLfloat most = 0.0f;
+            gl->glGetFloatv(0x84FF /* GL_MAX_TEXTURE_MAX_ANISOTROPY */, &most);
+            maxAnisotropy = gl->glGetError() == GL_NO_ERROR ? std::min(most, 16.0f) : 0.0f;
+        }
+        if (maxAnisotropy > 1.0f) gl->glTexParameterf(GL_TEXTURE_2D, 0x84FE /* GL_TEXTURE_MAX_ANISOTROPY */, maxAnisotropy);
+        ++counters.textureUploads;
+        counters.textureBytes += decoded->bytes() * 4 / 3;
+        return mapTextures[key] = g, g.texture;
+    }
+
+    // Frees the map textures no material of `scene` reads any more.
+    void collectMapTextures(const Scene& scene) {
+        std::set<std::string> used;
+        for (const TextureRef& t : texturesOf(scene)) used.insert(t.key());
+        for (auto it = mapTextures.begin(); it != mapTextures.end();) {
+            if (!used.count(it->first.first)) {
+                counters.textureBytes -= std::min(counters.textureBytes, it->second.image->bytes() * 4 / 3);
+                gl->glDeleteTextures(1, &it->second.texture);
+                it = mapTextures.erase(it);
+            } else {
+                ++it;
+            }
+        }
+    }
+
+    // Where a program takes a material's maps (material_maps.glsl), resolved once per drawObjects call.
+    struct MapUniforms {
+        explicit MapUniforms(QOpenGLShaderProgram& p)
+            : hasMaps(p.uniformLocation("uHasMaps")),
+              metallicChannel(p.uniformLocation("uMetallicChannel")),
+              roughnessChannel(p.uniformLocation("uRoughnessChannel")),
+              baseColor(p.uniformLocation("uBaseColor")),
+              baseAlpha(p.uniformLocation("uBaseAlpha")),
+              metallic(p.uniformLocation("uMetallic")),
+              roughness(p.uniformLocation("uRoughness")),
+              specular(p.uniformLocation("uSpecular")),
+              normalScale(p.uniformLocation("uNormalScale")),
+              occlusionStrength(p.uniformLocation("uOcclusionStrength")),
+              emissive(p.uniformLocation("uEmissive")),
+              alphaMode(p.uniformLocation("uAlphaMode")),
+              alphaCutoff(p.uniformLocation("uAlphaCutoff")) {
+            const char* use[kMapCount] = {"uUseBaseColorMap", "uUseMetallicMap", "uUseRoughnessMap",
+                                          "uUseNormalMap", "uUseOcclusionMap", "uUseEmissiveMap"};
+            const char* sampler[kMapCount] = {"uBaseColorMap", "uMetallicMap", "uRoughnessMap",
+                                              "uNormalMap", "uOcclusionMap", "uEmissiveMap"};
+            for (int i = 0; i < kMapCount; ++i) {
+                uses[i] = p.uniformLocation(use[i]);
+                samplers[i] = p.uniformLocation(sampler[i]);
+            }
+        }
+        int hasMaps, metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
+            normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff;
+        int uses[kMapCount], samplers[kMapCount];
+    };
+
+    // A layered material's maps: binds each decoded one to its unit (white where none) and sets
+    // the factors. Returns whether the roughness map is read (each fragment its own lobe).
+    bool bindMaps(const MapUniforms& u, const Layers& l) {
+        const MaterialMaps& m = l.maps;
+        // Emission and alpha cut apply without any texture too.
+        const bool any = m.anyTexture() || m.emissiveFactor.r > 0.0f || m.emissiveFactor.g > 0.0f ||
+                         m.emissiveFactor.b > 0.0f || m.alphaMode == AlphaMode::Mask;
+        gl->glUniform1i(u.hasMaps, any ? 1 : 0);
+        if (!any) return false;
+        if (whiteTexture == 0) {
+            const std::uint8_t white[4] = {255, 255, 255, 255};
+            gl->glGenTextures(1, &whiteTexture);
+            gl->glBindTexture(GL_TEXTURE_2D, whiteTexture);
+            gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        const TextureRef* refs[kMapCount] = {&m.baseColor, &m.metallic, &m.roughness, &m.normal, &m.occlusion, &m.emissive};
+        const bool srgb[kMapCount] = {true, false, false, false, false, true};
+        bool used[kMapCount];
+        GLuint textures[kMapCount];
+        // Uploads first (each binds its texture to the active unit), then the units.
+        gl->glActiveTexture(GL_TEXTURE0 + kFirstMapUnit + kMapCount);
+        for (int i = 0; i < kMapCount; ++i) textures[i] = mapTexture(*refs[i], srgb[i]);
+        for (int i = 0; i < kMapCount; ++i) {
+            const GLuint texture = textures[i];
+            used[i] = texture != 0;
+            const GLuint unit = kFirstMapUnit + static_cast<GLuint>(i);
+            gl->glActiveTexture(GL_TEXTURE0 + unit);
+            gl->glBindTexture(GL_TEXTURE_2D, used[i] ? texture : whiteTexture);
+            gl->glBindSampler(unit, 0);
+            gl->glUniform1i(u.samplers[i], static_cast<GLint>(unit));
+            gl->glUniform1i(u.uses[i], used[i] ? 1 : 0);
+        }
+        gl->glActiveTexture(GL_TEXTURE0);
+        gl->glUniform1i(u.metallicChannel, m.metallic.channel);
+        gl->glUniform1i(u.roughnessChannel, m.roughness.channel);
+        gl->glUniform3fv(u.baseColor, 1, glm::value_ptr(l.baseColor));
+        gl->glUniform1f(u.baseAlpha, m.baseAlpha);
+        gl->glUniform1f(u.metallic, l.metallic);
+        gl->glUniform1f(u.roughness, l.roughness);
+        gl->glUniform1f(u.specular, l.specular);
+        gl->glUniform1f(u.normalScale, m.normalScale);
+        gl->glUniform1f(u.occlusionStrength, m.occlusionStrength);
+        gl->glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissiveFactor));
+        gl->glUniform1i(u.alphaMode, static_cast<int>(m.alphaMode));
+        gl->glUniform1f(u.alphaCutoff, m.alphaCutoff);
+        return used[2];
+    }
+
     // Sets a layered material's uniforms and binds its three lookups.
-    ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const Material& m,
-                           bool irradianceReady) {
+    ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms,
+                           const Material& m, bool irradianceReady) {
         bindSplitSum();
-        const LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
+        LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
+        const bool roughnessMapped = bindMaps(mapUniforms, m.layers);
+        if (roughnessMapped && !plan.specular.mirror) {
+            // Each fragment picks its own lobe (object.frag, readLobePerFragment): the stack where
+            // it holds it, else the chain at that lobe's level, which needs the chain from level 0.
+            plan.specular.minLevel = 0.0f;
+        }
         const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-        const bool specular = plan.specular.wantsLobeCube && stackServes(plan.specular.exponent);
+        const bool specular = plan.specular.wantsLobeCube &&
+                              (roughnessMapped ? stackCurrent() : stackServes(plan.specular.exponent));
         const bool coat = plan.hasCoat && plan.coat.wantsLobeCube && stackServes(plan.coat.exponent);
         const bool diffuse = !diffuseIrradiance && plan.diffuse.wantsLobeCube && stackServes(plan.diffuse.exponent);
         auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
@@ -224,7 +383,7 @@ struct Renderer::Impl {
         if (!diffuseIrradiance) bindChain(plan.diffuse, kDiffuseChainUnit);
         auto held = [&](const ObjectLookup& layer) { return layer.mirror || stackHolds(layer.exponent); };
         ObjectRead read;
-        read.settled = held(plan.specular) && (!plan.hasCoat || held(plan.coat)) &&
+        read.settled = (roughnessMapped ? specular : held(plan.specular)) && (!plan.hasCoat || held(plan.coat)) &&
                        (diffuseIrradiance || held(plan.diffuse));
         read.fromChain = !read.settled;
         return read;
@@ -251,6 +410,7 @@ struct Renderer::Impl {
         bindStack(program);
         const int locLayered = program.uniformLocation("uLayered");
         const LayeredUniforms layeredUniforms(program);
+        const MapUniforms mapUniforms(program);
         // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
         // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
         gl->glUniform1f(program.uniformLocation("uLevelOffset"),
@@ -274,7 +434,7 @@ struct Renderer::Impl {
             gl->glUniform1i(locLayered, m.layered ? 1 : 0);
             ObjectRead read;
             if (m.layered) {
-                read = bindLayered(layeredUniforms, lobeUniforms, m, irradianceReady);
+                read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady);
             } else {
                 const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
                 const bool stack = plan.wantsLobeCube && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));
@@ -391,12 +551,21 @@ struct Renderer::Impl {
         if (it != meshes.end()) releaseMesh(it->second);
         GpuMesh g;
         g.source = mesh;
+        // Position and normal, then the asset's UV and tangent where it has them.
+        const bool uvs = mesh->uvs.size() == mesh->positions.size();
+        const bool tangents = mesh->tangents.size() == mesh->positions.size();
+        const std::size_t floats = 6 + (uvs ? 2 : 0) + (tangents ? 4 : 0);
         std::vector<float> interleaved;
-        interleaved.reserve(mesh->positions.size() * 6);
+        interleaved.reserve(mesh->positions.size() * floats);
         for (std::size_t i = 0; i < mesh->positions.size(); ++i) {
             const glm::vec3& p = mesh->positions[i];
             const glm::vec3& n = mesh->normals[i];
             interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+            if (uvs) interleaved.insert(interleaved.end(), {mesh->uvs[i].x, mesh->uvs[i].y});
+            if (tangents) {
+                const glm::vec4& t = mesh->tangents[i];
+                interleaved.insert(interleaved.end(), {t.x, t.y, t.z, t.w});
+            }
         }
         gl->glGenVertexArrays(1, &g.vao);
         gl->glBindVertexArray(g.vao);
@@ -409,12 +578,22 @@ struct Renderer::Impl {
         gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                          static_cast<GLsizeiptr>(mesh->indices.size() * sizeof(std::uint32_t)),
                          mesh->indices.data(), GL_STATIC_DRAW);
-        const GLsizei stride = 6 * sizeof(float);
+        const auto stride = static_cast<GLsizei>(floats * sizeof(float));
         gl->glEnableVertexAttribArray(0);
         gl->glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
         gl->glEnableVertexAttribArray(1);
         gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
                                   reinterpret_cast<const void*>(3 * sizeof(float)));
+        std::size_t offset = 6;
+        if (uvs) {
+            gl->glEnableVertexAttribArray(2);
+            gl->glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset * sizeof(float)));
+            offset += 2;
+        }
+        if (tangents) {
+            gl->glEnableVertexAttribArray(3);
+            gl->glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset * sizeof(float)));
+        }
         gl->glBindVertexArray(0);
         g.indexCount = static_cast<GLsizei>(mesh->indices.size());
         ++counters.meshUploads;
@@ -504,7 +683,7 @@ QByteArray shaderSource(const char* path) {
     QByteArray source = file.readAll();
     // #include "layered.glsl", "cube_lod.glsl", "lobe_stack.glsl" (GLSL has no includes): the file's text in its
     // place, then #line so the compiler's line numbers stay those of the including file.
-    for (const char* name : {"layered.glsl", "cube_lod.glsl", "lobe_stack.glsl"}) {
+    for (const char* name : {"layered.glsl", "material_maps.glsl", "cube_lod.glsl", "lobe_stack.glsl"}) {
         const QByteArray include = QByteArray("#include \"") + name + "\"\n";
         if (const qsizetype at = source.indexOf(include); at >= 0) {
             QFile shared(QStringLiteral(":/mipgloss/shaders/") + QLatin1String(name));
@@ -604,6 +783,10 @@ void Renderer::destroy() {
     if (!d.gl) return;
     for (auto& [mesh, g] : d.meshes) d.releaseMesh(g);
     d.meshes.clear();
+    for (auto& [key, t] : d.mapTextures) d.gl->glDeleteTextures(1, &t.texture);
+    d.mapTextures.clear();
+    d.gl->glDeleteTextures(1, &d.whiteTexture);
+    d.whiteTexture = 0;
     for (auto& [key, s] : d.samplers) d.gl->glDeleteSamplers(1, &s);
     d.samplers.clear();
     d.stackEntries.clear();
@@ -681,6 +864,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     if (!d.gl || width <= 0 || height <= 0) return;
     auto* gl = d.gl;
     d.collectMeshes();
+    d.collectMapTextures(scene);
     d.ensureTargets(width, height, scene.display.samples);
 
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
@@ -852,6 +1036,7 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     if (!d.gl || width <= 0 || height <= 0 || !hasEnvironment()) return aov;
     auto* gl = d.gl;
     d.collectMeshes();
+    d.collectMapTextures(scene);
     // A single-sample float target of aov.frag's seven colours and depth, made for this call.
     constexpr int kTargets = 7;
     GLuint fbo = 0, colour[kTargets] = {}, depth = 0;

@@ -20,7 +20,9 @@
 #include "mipgloss/io/file_error.h"
 #include "mipgloss/scene/bounds.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -44,6 +46,10 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<std::uint32_t> indices;
+    // Assets only (asset.h), each empty or one per vertex: texture coordinates (glTF's TEXCOORD_0,
+    // v down as glTF has it) and tangents (xyz unit, w = ±1 the bitangent's sign, glTF's TANGENT).
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> tangents;
     Bounds bounds;
 
     std::size_t triangleCount() const { return indices.size() / 3; }
@@ -82,5 +88,10 @@ Mesh makeSphere(int rings = 64, int segments = 128);
 void computeVertexNormals(Mesh& mesh);
 // Recomputes `bounds` from the positions.
 void computeBounds(Mesh& mesh);
+// Per-vertex tangents from the UVs (needs uvs): each triangle's tangent and bitangent from its
+// UV gradients, summed by corner angle, Gram–Schmidt against the normal, w the handedness
+// (MikkTSpace's rules per vertex, without its splitting of vertices at mirrored UV seams).
+// A vertex whose UVs are degenerate gets any unit tangent perpendicular to its normal.
+void computeTangents(Mesh& mesh);
 
 }  // namespace mipgloss

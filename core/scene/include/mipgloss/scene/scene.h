@@ -33,6 +33,55 @@ const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces"
 bool parseToneMap(const std::string& text, ToneMap& out);
 
 
+// An image a material reads (an asset's texture, asset.h): a file, or image `image` of a glTF file
+// (a .glb's binary chunk, a data URI) when `image` >= 0. `channel` picks the one channel a scalar
+// map reads (0 R, 1 G, 2 B, 3 A: glTF keeps roughness in G and metallic in B); colour maps read RGB
+// and ignore it. No file: no texture.
+struct TextureRef {
+    std::string file;
+    int image = -1;
+    int channel = 0;
+
+    bool empty() const { return file.empty(); }
+    // The one name for this image, shared by every material that reads it (the texture caches'
+    // key, the messages): the file, or "file#image 3".
+    std::string key() const;
+    bool operator==(const TextureRef&) const = default;
+};
+
+// How a material's alpha (base colour factor × texture alpha) cuts it: glTF's alphaMode.
+// Blend is drawn as Opaque (no sorting of transparent layers yet); the importer says so.
+enum class AlphaMode { Opaque, Mask, Blend };
+const char* alphaModeName(AlphaMode mode);  // "opaque", "mask", "blend"
+bool parseAlphaMode(const std::string& text, AlphaMode& out);
+
+// The texture maps of a layered material, glTF's metallic–roughness set (docs/assets.md). Each map
+// multiplies its factor in Layers (base colour, metallic, roughness) or here (emissive); a map
+// without a file reads 1. The roughness map gives every fragment its own lobe (the lobe stack
+// serves any λ per fragment, lobes.h).
+inline constexpr float kMaxNormalScale = 10.0f;  // |normalScale| at most (a steeper tilt is noise)
+inline constexpr float kMaxEmissive = 1e20f;     // the radiance range the renderer holds (radiance-range.md)
+
+struct MaterialMaps {
+    TextureRef baseColor;   // sRGB RGBA: colour × Layers::baseColor, alpha × baseAlpha
+    TextureRef metallic;    // linear, one channel × Layers::metallic
+    TextureRef roughness;   // linear, one channel × Layers::roughness
+    TextureRef normal;      // tangent space, RGB in [0, 1] → [−1, 1], XY × normalScale
+    TextureRef occlusion;   // linear R: 1 + strength·(R − 1) multiplies every lookup
+    TextureRef emissive;    // sRGB RGB × emissiveFactor
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    Rgb emissiveFactor{0.0f};  // linear radiance added (glTF's emissiveFactor, ≥ 0), × the emissive map
+    float baseAlpha = 1.0f;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+
+    bool anyTexture() const;
+    // Every texture the maps read, in the order of the fields (empty ones left out).
+    std::vector<TextureRef> textures() const;
+    bool operator==(const MaterialMaps&) const = default;
+};
+
 // A layered material (layered.h): a diffuse base under a glossy specular layer with Fresnel, and
 // an optional clear coat over both, set the way glTF and Substance set them (metallic–roughness).
 // Every value, each base colour component too, is in [0, 1] (a surface reflects at most what
@@ -44,6 +93,7 @@ struct Layers {
     float specular = 0.04f;      // F0 of the dielectric part
     float coat = 0.0f;           // clear coat weight (0: none)
     float coatRoughness = 0.05f; // its lobe; its F0 is kDielectricF0
+    MaterialMaps maps;           // texture maps (assets); none by default
 
     bool operator==(const Layers&) const = default;
 };
@@ -114,6 +164,9 @@ struct SceneObject {
     std::string name;
     std::shared_ptr<const Mesh> mesh;
     std::string meshSource;  // the file it came from, or "builtin:teapot" / "builtin:sphere"
+    // The part of an asset file (asset.h: a glTF primitive as placed by its nodes, or an OBJ's
+    // faces of one material) the mesh is; -1: the mesh is the whole file, read by loadMesh.
+    int meshPart = -1;
     Transform transform;
     MaterialId material = kNoMaterial;
     bool visible = true;

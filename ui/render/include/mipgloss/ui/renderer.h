@@ -45,6 +45,8 @@ struct RenderCounters {
     std::uint64_t stackBytes = 0;         // the lobe stack's atlas on the GPU (RGB9_E5, 4 bytes a texel)
     std::uint64_t objectsSettled = 0;     // in the last frame: every lobe read from the lobe stack
     std::uint64_t objectsFromChain = 0;   // in the last frame: blurred, read from the chain
+    std::uint64_t textureUploads = 0;     // texture maps sent to the GPU (each image and colour space once)
+    std::uint64_t textureBytes = 0;       // texture maps on the GPU now, mip levels included (RGBA8)
 };
 
 // The largest picture this OpenGL can draw, and what limits it: each axis is the smallest of

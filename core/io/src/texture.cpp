@@ -1,0 +1,114 @@
+#include "mipgloss/io/texture.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace mipgloss {
+
+namespace {
+
+std::string extensionForMime(const std::string& mime, const std::string& name) {
+    if (mime == "image/png") return ".png";
+    if (mime == "image/jpeg") return ".jpg";
+    if (mime == "image/webp") return ".webp";
+    const std::string ext = std::filesystem::path(name).extension().string();
+    return ext.empty() ? ".png" : ext;
+}
+
+TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSize) {
+    const OIIO::ImageSpec& spec = in.spec();
+    TextureImage image;
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw TextureError(name, "the image has no pixels (" + std::to_string(spec.width) + " x " +
+                                     std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) + " channels)");
+    const std::uint64_t pixels = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
+    if (pixels > kMaxTexturePixels || spec.depth > 1)
+        throw TextureError(name, "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                                     " pixels, more than a texture may have (" + std::to_string(kMaxTexturePixels) +
+                                     ")");
+    const int channels = std::min(spec.nchannels, 4);
+    std::vector<std::uint8_t> raw(pixels * static_cast<std::uint64_t>(channels));
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data())) {
+        std::string err = in.geterror();
+        throw TextureError(name, "cannot read the pixels (truncated or corrupt image)" +
+                                     (err.empty() ? std::string() : ": " + err));
+    }
+    image.width = image.fileWidth = spec.width;
+    image.height = image.fileHeight = spec.height;
+    image.channels = channels;
+    image.rgba.resize(pixels * 4);
+    for (std::uint64_t i = 0; i < pixels; ++i) {
+        const std::uint8_t* p = &raw[i * static_cast<std::uint64_t>(channels)];
+        std::uint8_t* q = &image.rgba[i * 4];
+        switch (channels) {
+            case 1: q[0] = q[1] = q[2] = p[0]; q[3] = 255; break;
+            case 2: q[0] = q[1] = q[2] = p[0]; q[3] = p[1]; break;
+            case 3: q[0] = p[0]; q[1] = p[1]; q[2] = p[2]; q[3] = 255; break;
+            default: q[0] = p[0]; q[1] = p[1]; q[2] = p[2]; q[3] = p[3]; break;
+        }
+    }
+    downsizeTexture(image, maxSize);
+    if (image.width != image.fileWidth || image.height != image.fileHeight)
+        image.warnings.push_back(name + ": texture of " + std::to_string(image.fileWidth) + " x " +
+                                 std::to_string(image.fileHeight) + " downsized to " + std::to_string(image.width) +
+                                 " x " + std::to_string(image.height) + " (the limit is " + std::to_string(maxSize) +
+                                 " on a side)");
+    return image;
+}
+
+}  // namespace
+
+void downsizeTexture(TextureImage& image, int maxSize) {
+    maxSize = std::max(maxSize, 1);
+    while (image.width > maxSize || image.height > maxSize) {
+        const int w = image.width, h = image.height;
+        const int hw = (w + 1) / 2, hh = (h + 1) / 2;
+        std::vector<std::uint8_t> half(static_cast<std::size_t>(hw) * static_cast<std::size_t>(hh) * 4);
+        for (int y = 0; y < hh; ++y)
+            for (int x = 0; x < hw; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    unsigned sum = 0, count = 0;
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx) {
+                            const int sx = 2 * x + dx, sy = 2 * y + dy;
+                            if (sx >= w || sy >= h) continue;
+                            sum += image.rgba[(static_cast<std::size_t>(sy) * w + sx) * 4 + c];
+                            ++count;
+                        }
+                    half[(static_cast<std::size_t>(y) * hw + x) * 4 + c] =
+                        static_cast<std::uint8_t>((sum + count / 2) / count);
+                }
+        image.rgba = std::move(half);
+        image.width = hw;
+        image.height = hh;
+    }
+}
+
+TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) {
+        std::string err = OIIO::geterror();
+        throw TextureError(file, "not a readable image" + (err.empty() ? std::string() : ": " + err));
+    }
+    return readOpened(*in, file.string(), maxSize);
+}
+
+TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
+                                     const std::string& mimeType, int maxSize) {
+    if (bytes.empty()) throw TextureError(nameForMessages, "the image is empty (0 bytes)");
+    OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
+    const std::string fakeName = "embedded" + extensionForMime(mimeType, nameForMessages);
+    auto in = OIIO::ImageInput::open(fakeName, nullptr, &reader);
+    if (!in) {
+        std::string err = OIIO::geterror();
+        throw TextureError(nameForMessages, "not a readable image" + (err.empty() ? std::string() : ": " + err));
+    }
+    return readOpened(*in, nameForMessages, maxSize);
+}
+
+}  // namespace mipgloss

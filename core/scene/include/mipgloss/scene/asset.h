@@ -1,0 +1,109 @@
+// Assets as artists have them (issue 21, docs/assets.md): glTF 2.0 (.gltf with external or
+// embedded buffers and images, .glb) read with tinygltf, and OBJ with its MTL library read by our
+// own parser. An asset is parts (meshes with UVs, authored normals and tangents, each drawn with
+// one material) and named layered materials with texture maps (scene.h, MaterialMaps).
+//
+// glTF: every triangle primitive of the default scene (or of every root node when the file has no
+// scene), placed by its node's world matrix (positions by the matrix, normals by its inverse
+// transpose, tangents by its upper 3×3), so a part's mesh needs no transform of its own. Missing
+// normals are computed (area-weighted, flat where the primitive has no shared vertices); missing
+// tangents are computed from the UVs (computeTangents) when the material has a normal map.
+// Materials: the metallic–roughness core (base colour factor and texture, metallic and roughness
+// factors and their texture, G and B), normal texture and scale, occlusion and strength, emissive
+// factor and texture, alpha mode and cutoff; KHR_materials_clearcoat's factor and roughness when
+// present. Extensions the file requires and we do not read are refused by name.
+//
+// OBJ + MTL: v, vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back), usemtl,
+// mtllib, s (smoothing groups: where a face has no vn, its corners share a computed normal only
+// with faces of its own group; "s off" faces are flat). MTL: newmtl, Kd, Ks, Ns, Ke, d, Pr, Pm,
+// map_Kd, map_Pr (and map_Ns, inverted to roughness), map_Pm, map_Ke, map_d, bump/map_Bump/norm
+// (with -bm), each texture path relative to the MTL file. OBJ's v axis points up: it is flipped to
+// glTF's.
+//
+// Hostile files: every count, index and offset is checked against what holds it before it is
+// used; a refusal (AssetError) names the file and the element (mesh, primitive, accessor, buffer
+// view, image, line) at fault. A texture whose file is missing or does not decode is a warning
+// when the textures are decoded (TextureCache), and the part is drawn without it.
+#pragma once
+
+#include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/scene.h"
+
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mipgloss {
+
+class AssetError : public FileError {
+public:
+    using FileError::FileError;
+};
+
+struct AssetMaterial {
+    std::string name;   // as in the file ("Material 3" when it has none), unique within the asset
+    Material material;  // layered, with maps
+};
+
+struct AssetPart {
+    std::string name;                  // "node name" or "mesh name", with " 2", " 3" for more primitives
+    std::shared_ptr<const Mesh> mesh;
+    int material = -1;                 // index into Asset::materials, -1: none (the default material)
+};
+
+struct Asset {
+    std::vector<AssetPart> parts;
+    std::vector<AssetMaterial> materials;
+    std::vector<std::string> warnings;  // one line each, naming the file
+    // Read by loadMesh (a plain mesh file): its one part is the whole file (SceneObject::meshPart -1).
+    bool wholeFile = false;
+};
+
+// The box of all parts (the file's own placement of them).
+Bounds assetBounds(const Asset& asset);
+
+// Adds the asset's parts to `scene` as objects, all under the one `placement` (so they stay where
+// the file put them relative to each other), meshSource `source` and meshPart their index (-1
+// for a whole file). Each asset material is added once under a free name (uniqueName) and shared
+// by its parts; a part without one gets `fallback` as a material of its own. Returns the indices
+// of the objects added.
+std::vector<int> addAsset(Scene& scene, const Asset& asset, const std::string& source, const Transform& placement,
+                          const Material& fallback);
+
+// .gltf, .glb, and .obj (an OBJ is an asset when it names an MTL library or has texture
+// coordinates; otherwise loadAsset reads it as loadMesh does, as one part without a material).
+bool isAssetFile(const std::filesystem::path& path);
+std::span<const char* const> assetExtensions();  // ".gltf", ".glb", ".obj"
+
+// Loads an asset; the format from the extension. Throws AssetError (MeshError for a plain mesh).
+Asset loadAsset(const std::filesystem::path& path);
+
+// glTF from bytes (a .glb when they start with "glTF", else JSON); `file` names it in messages
+// and its folder resolves external buffers and images (none: external references are refused).
+Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const std::filesystem::path& file);
+
+// The material library of an OBJ (an .mtl file's text), each texture path resolved against
+// `folder`. Unknown keys are skipped; a bad value throws AssetError naming the line.
+std::vector<AssetMaterial> parseMtl(std::span<const unsigned char> bytes, const std::filesystem::path& file,
+                                    const std::filesystem::path& folder);
+
+// An OBJ with its MTL libraries from memory; `mtlFiles` gives each library's bytes by the name the
+// OBJ's mtllib line uses (a library not there is a warning, its materials drawn as the default).
+struct NamedBytes {
+    std::string name;
+    std::span<const unsigned char> bytes;
+};
+Asset loadObjAssetFromMemory(std::span<const unsigned char> bytes, const std::filesystem::path& file,
+                             std::span<const NamedBytes> mtlFiles);
+
+// The encoded bytes of image `image` of a glTF file and its MIME type ("image/png"...), for
+// decoding (TextureCache). Throws AssetError when the file or the image cannot be read.
+struct EncodedImage {
+    std::vector<unsigned char> bytes;
+    std::string mimeType;
+};
+EncodedImage gltfImageBytes(const std::filesystem::path& file, int image);
+
+}  // namespace mipgloss

@@ -1,0 +1,675 @@
+// The glTF 2.0 reader (asset.h): tinygltf parses the JSON and the GLB container; every index,
+// count, offset and stride it hands us is checked here before a byte is read, because tinygltf
+// checks only the JSON's shape (an accessor may point past its buffer, an index past its vertices).
+#include "mipgloss/scene/asset.h"
+
+#include "mipgloss/io/file_error.h"
+
+#include <tiny_gltf.h>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace mipgloss {
+
+namespace {
+
+// The extensions this reader honours; a file that requires any other is refused by name.
+const std::set<std::string> kSupportedExtensions = {
+    "KHR_mesh_quantization",           // integer attributes: read through the accessor's type
+    "KHR_materials_emissive_strength", // multiplies emissiveFactor
+    "KHR_materials_clearcoat",         // the coat layer
+};
+
+// The most nodes deep a hierarchy may be (a cycle or a corrupt file beyond it).
+constexpr int kMaxNodeDepth = 256;
+
+bool isImageFile(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const char* e : {".png", ".jpg", ".jpeg", ".webp", ".ktx", ".ktx2", ".bmp", ".gif", ".tga", ".exr", ".hdr",
+                          ".tif", ".tiff", ".dds"})
+        if (ext == e) return true;
+    return false;
+}
+
+// What tinygltf may read besides the file itself: external buffers (their bytes are the
+// geometry), but not external images, which the texture cache decodes later (and only if a
+// material uses them); with no folder (loadGltfFromMemory) nothing at all.
+struct FileAccess {
+    bool readExternal = true;
+    bool readImages = false;
+};
+
+bool fileExists(const std::string& path, void* user) {
+    const auto* access = static_cast<const FileAccess*>(user);
+    std::error_code ec;
+    return access->readExternal && fs::is_regular_file(path, ec);
+}
+
+std::string expandFilePath(const std::string& path, void*) { return path; }  // no shell expansion, ever
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    const auto* access = static_cast<const FileAccess*>(user);
+    if (!access->readExternal) {
+        if (err) *err += "external file '" + path + "' is not read from memory\n";
+        return false;
+    }
+    if (!access->readImages && isImageFile(path)) return false;  // decoded later, by the texture cache
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        if (err) *err += "cannot open '" + path + "'\n";
+        return false;
+    }
+    out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "mipgloss never writes through the glTF reader\n";
+    return false;
+}
+
+// Keeps each image's encoded bytes (decoded later with OpenImageIO, off the UI thread).
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    image->as_is = true;
+    return true;
+}
+
+tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path& file, FileAccess access) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, nullptr);
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
+    tinygltf::Model model;
+    std::string err, warn;
+    const std::string folder = file.parent_path().string();
+    if (bytes.size() > 0xffffffffu) throw AssetError(file, "the file is larger than 4 GiB, more than glTF can address");
+    const auto length = static_cast<unsigned>(bytes.size());
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    bool ok = false;
+    if (binary) {
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
+    } else {
+        ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length,
+                                        folder);
+    }
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        std::replace(err.begin(), err.end(), '\n', ';');
+        throw AssetError(file, std::string(binary ? "not a readable GLB file" : "not a readable glTF file") +
+                                   (err.empty() ? std::string() : ": " + err));
+    }
+    return model;
+}
+
+std::string element(const char* kind, std::size_t index, const std::string& name) {
+    return std::string(kind) + " " + std::to_string(index) + (name.empty() ? "" : " (\"" + name + "\")");
+}
+
+std::size_t componentBytes(int componentType) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+    }
+}
+
+int componentsOf(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return 1;
+        case TINYGLTF_TYPE_VEC2: return 2;
+        case TINYGLTF_TYPE_VEC3: return 3;
+        case TINYGLTF_TYPE_VEC4: return 4;
+        default: return 0;
+    }
+}
+
+// One component as a float: floats as they are, integers normalised when the accessor says so
+// (glTF 2.0 §3.11: max(c / 127, −1) for BYTE, c / 255 for UNSIGNED_BYTE, ...), else their value.
+float componentValue(const unsigned char* p, int componentType, bool normalized) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0f, -1.0f) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { std::uint8_t v = *p; return normalized ? v / 255.0f : v; }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0f, -1.0f) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0f : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); return normalized ? static_cast<float>(v / 4294967295.0) : static_cast<float>(v); }
+        default: return 0.0f;
+    }
+}
+
+class Reader {
+public:
+    Reader(const tinygltf::Model& model, const fs::path& file) : model_(model), file_(file) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        throw AssetError(file_, where + ": " + what);
+    }
+    void warn(const std::string& what) { asset_.warnings.push_back(file_.string() + ": " + what); }
+
+    // The bytes of accessor `index` checked against its buffer view and buffer; returns the
+    // first element's address and the stride. `count` elements of `components` each.
+    struct View {
+        const unsigned char* data = nullptr;
+        std::size_t stride = 0;
+        std::size_t count = 0;
+        int componentType = 0;
+        int components = 0;
+        bool normalized = false;
+    };
+    View accessorView(int index, const std::string& where) const {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size())
+            fail(where, "refers to accessor " + std::to_string(index) + ", but the file has " +
+                            std::to_string(model_.accessors.size()));
+        const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(index)];
+        const std::string at = element("accessor", static_cast<std::size_t>(index), a.name);
+        View v;
+        v.componentType = a.componentType;
+        v.components = componentsOf(a.type);
+        v.normalized = a.normalized;
+        v.count = a.count;
+        const std::size_t size = componentBytes(a.componentType);
+        if (size == 0 || v.components == 0)
+            fail(at, "has a component type or element type this reader does not read (" +
+                         std::to_string(a.componentType) + ", " + std::to_string(a.type) + ")");
+        if (a.sparse.isSparse) fail(at, "is sparse, which this reader does not read");
+        if (a.count == 0) fail(at, "has no elements (count 0)");
+        if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
+            fail(at, "refers to buffer view " + std::to_string(a.bufferView) + ", but the file has " +
+                         std::to_string(model_.bufferViews.size()));
+        const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+        const std::string viewAt = element("buffer view", static_cast<std::size_t>(a.bufferView), bv.name);
+        if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model_.buffers.size())
+            fail(viewAt, "refers to buffer " + std::to_string(bv.buffer) + ", but the file has " +
+                             std::to_string(model_.buffers.size()));
+        const std::vector<unsigned char>& buffer = model_.buffers[static_cast<std::size_t>(bv.buffer)].data;
+        if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+            fail(viewAt, "reaches past the end of its buffer (" + std::to_string(bv.byteOffset) + " + " +
+                             std::to_string(bv.byteLength) + " bytes of " + std::to_string(buffer.size()) + ")");
+        const std::size_t elementBytes = size * static_cast<std::size_t>(v.components);
+        v.stride = bv.byteStride != 0 ? bv.byteStride : elementBytes;
+        if (v.stride < elementBytes || v.stride > 252)
+            fail(viewAt, "has a byte stride of " + std::to_string(v.stride) + " for elements of " +
+                             std::to_string(elementBytes) + " bytes");
+        // The last element ends at byteOffset + stride·(count − 1) + elementBytes: checked without overflow.
+        const std::size_t room = bv.byteLength;
+        if (a.byteOffset > room || (a.count - 1) > (room - a.byteOffset) / v.stride ||
+            v.stride * (a.count - 1) + elementBytes > room - a.byteOffset)
+            fail(at, "reaches past the end of its buffer view (" + std::to_string(a.count) + " elements of " +
+                         std::to_string(elementBytes) + " bytes, stride " + std::to_string(v.stride) + ", from byte " +
+                         std::to_string(a.byteOffset) + " of " + std::to_string(room) + ")");
+        v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+        return v;
+    }
+
+    template <int N>
+    std::vector<std::array<float, N>> readFloats(int index, const std::string& where, int minComponents = N) const {
+        const View v = accessorView(index, where);
+        if (v.components < minComponents || v.components > 4)
+            fail(element("accessor", static_cast<std::size_t>(index), model_.accessors[static_cast<std::size_t>(index)].name),
+                 "has " + std::to_string(v.components) + " components where " + where + " needs " +
+                     std::to_string(N));
+        std::vector<std::array<float, N>> out(v.count);
+        const std::size_t size = componentBytes(v.componentType);
+        for (std::size_t i = 0; i < v.count; ++i) {
+            const unsigned char* p = v.data + i * v.stride;
+            for (int c = 0; c < N; ++c)
+                out[i][static_cast<std::size_t>(c)] =
+                    c < v.components ? componentValue(p + static_cast<std::size_t>(c) * size, v.componentType, v.normalized)
+                                     : 1.0f;
+            for (int c = 0; c < N; ++c)
+                if (!std::isfinite(out[i][static_cast<std::size_t>(c)]))
+                    fail(element("accessor", static_cast<std::size_t>(index), model_.accessors[static_cast<std::size_t>(index)].name),
+                         "element " + std::to_string(i) + " is not finite (NaN or infinite)");
+        }
+        return out;
+    }
+
+    std::vector<std::uint32_t> readIndices(int index, const std::string& where, std::size_t vertexCount) const {
+        const View v = accessorView(index, where);
+        const std::string at = element("accessor", static_cast<std::size_t>(index), model_.accessors[static_cast<std::size_t>(index)].name);
+        if (v.components != 1 || (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                  v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                                  v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            fail(at, "holds indices that are not unsigned integer scalars");
+        std::vector<std::uint32_t> out(v.count);
+        for (std::size_t i = 0; i < v.count; ++i) {
+            const unsigned char* p = v.data + i * v.stride;
+            std::uint32_t value = 0;
+            if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) value = *p;
+            else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p, 2); value = s; }
+            else std::memcpy(&value, p, 4);
+            if (value >= vertexCount)
+                fail(at, "index " + std::to_string(i) + " is " + std::to_string(value) + ", but " + where + " has only " +
+                             std::to_string(vertexCount) + " vertices");
+            out[i] = value;
+        }
+        return out;
+    }
+
+    TextureRef texture(int index, int texCoord, const std::string& where, int channel = 0) {
+        if (index < 0) return {};
+        if (static_cast<std::size_t>(index) >= model_.textures.size())
+            fail(where, "refers to texture " + std::to_string(index) + ", but the file has " +
+                            std::to_string(model_.textures.size()));
+        const tinygltf::Texture& t = model_.textures[static_cast<std::size_t>(index)];
+        if (t.source < 0) {
+            warn(element("texture", static_cast<std::size_t>(index), t.name) + " has no image (or only an extension's); drawn without it");
+            return {};
+        }
+        if (static_cast<std::size_t>(t.source) >= model_.images.size())
+            fail(element("texture", static_cast<std::size_t>(index), t.name),
+                 "refers to image " + std::to_string(t.source) + ", but the file has " + std::to_string(model_.images.size()));
+        if (texCoord != 0) warn(where + " reads UV set " + std::to_string(texCoord) + "; only set 0 is read, and used for it");
+        const tinygltf::Image& image = model_.images[static_cast<std::size_t>(t.source)];
+        TextureRef ref;
+        ref.channel = channel;
+        if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
+            ref.file = (file_.parent_path() / uriDecode(image.uri)).lexically_normal().string();
+        } else {
+            ref.file = file_.string();
+            ref.image = t.source;
+        }
+        return ref;
+    }
+
+    static std::string uriDecode(const std::string& uri) {
+        std::string out;
+        for (std::size_t i = 0; i < uri.size(); ++i) {
+            if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+                std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+                out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+                i += 2;
+            } else {
+                out += uri[i];
+            }
+        }
+        return out;
+    }
+
+    static float unit(double v) { return std::isfinite(v) ? static_cast<float>(std::clamp(v, 0.0, 1.0)) : 0.0f; }
+
+    void readMaterials() {
+        std::set<std::string> taken;
+        for (std::size_t m = 0; m < model_.materials.size(); ++m) {
+            const tinygltf::Material& g = model_.materials[m];
+            const std::string at = element("material", m, g.name);
+            AssetMaterial out;
+            out.name = uniqueName(g.name.empty() ? "Material " + std::to_string(m) : g.name,
+                                  [&](const std::string& n) { return taken.count(n) > 0; });
+            taken.insert(out.name);
+            Material& mat = out.material;
+            mat.layered = true;
+            Layers& l = mat.layers;
+            const auto& pbr = g.pbrMetallicRoughness;
+            if (pbr.baseColorFactor.size() == 4) {
+                l.baseColor = Rgb(unit(pbr.baseColorFactor[0]), unit(pbr.baseColorFactor[1]), unit(pbr.baseColorFactor[2]));
+                l.maps.baseAlpha = unit(pbr.baseColorFactor[3]);
+            }
+            l.metallic = unit(pbr.metallicFactor);
+            l.roughness = unit(pbr.roughnessFactor);
+            l.specular = 0.04f;  // glTF's dielectric F0
+            l.maps.baseColor = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, at + " base colour");
+            const TextureRef mr = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                          at + " metallic-roughness");
+            if (!mr.empty()) {
+                l.maps.roughness = mr;
+                l.maps.roughness.channel = 1;  // G
+                l.maps.metallic = mr;
+                l.maps.metallic.channel = 2;  // B
+            }
+            l.maps.normal = texture(g.normalTexture.index, g.normalTexture.texCoord, at + " normal");
+            l.maps.normalScale = std::isfinite(g.normalTexture.scale)
+                                     ? static_cast<float>(std::clamp(g.normalTexture.scale, -double(kMaxNormalScale), double(kMaxNormalScale)))
+                                     : 1.0f;
+            l.maps.occlusion = texture(g.occlusionTexture.index, g.occlusionTexture.texCoord, at + " occlusion");
+            l.maps.occlusionStrength = unit(g.occlusionTexture.strength);
+            l.maps.emissive = texture(g.emissiveTexture.index, g.emissiveTexture.texCoord, at + " emissive");
+            double strength = 1.0;
+            if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end() &&
+                                                                                 it->second.Has("emissiveStrength")) {
+                const tinygltf::Value& s = it->second.Get("emissiveStrength");
+                if (s.IsNumber() && std::isfinite(s.GetNumberAsDouble())) strength = std::max(0.0, s.GetNumberAsDouble());
+            }
+            if (g.emissiveFactor.size() == 3) {
+                auto e = [&](double v) {
+                    return std::isfinite(v * strength) ? static_cast<float>(std::clamp(v * strength, 0.0, double(kMaxEmissive))) : 0.0f;
+                };
+                l.maps.emissiveFactor = Rgb(e(g.emissiveFactor[0]), e(g.emissiveFactor[1]), e(g.emissiveFactor[2]));
+            }
+            if (auto it = g.extensions.find("KHR_materials_clearcoat"); it != g.extensions.end()) {
+                auto number = [&](const char* key, double fallback) {
+                    if (!it->second.Has(key)) return fallback;
+                    const tinygltf::Value& v = it->second.Get(key);
+                    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+                };
+                l.coat = unit(number("clearcoatFactor", 0.0));
+                l.coatRoughness = unit(number("clearcoatRoughnessFactor", 0.0));
+            }
+            if (g.alphaMode == "MASK") l.maps.alphaMode = AlphaMode::Mask;
+            else if (g.alphaMode == "BLEND") {
+                l.maps.alphaMode = AlphaMode::Blend;
+                warn(at + " is alpha-blended; it is drawn opaque (blending is not drawn yet)");
+            }
+            l.maps.alphaCutoff = unit(g.alphaCutoff);
+            asset_.materials.push_back(std::move(out));
+        }
+    }
+
+    glm::dmat4 localMatrix(const tinygltf::Node& node, const std::string& at) const {
+        if (node.matrix.size() == 16) {
+            glm::dmat4 m;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<std::size_t>(c * 4 + r)];
+            return m;
+        }
+        glm::dmat4 m(1.0);
+        if (node.translation.size() == 3)
+            m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        if (node.rotation.size() == 4) {
+            glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // w, x, y, z
+            const double length = glm::length(q);
+            if (!(length > 0.0) || !std::isfinite(length)) fail(at, "has a rotation that is not a unit quaternion");
+            m = m * glm::mat4_cast(q / length);
+        }
+        if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+        return m;
+    }
+
+    void visit(int index, const glm::dmat4& parent, int depth, std::vector<bool>& onPath) {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
+            fail("the scene", "refers to node " + std::to_string(index) + ", but the file has " + std::to_string(model_.nodes.size()));
+        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
+        const std::string at = element("node", static_cast<std::size_t>(index), node.name);
+        if (onPath[static_cast<std::size_t>(index)]) fail(at, "is its own ancestor (a cycle in the node hierarchy)");
+        if (depth > kMaxNodeDepth) fail(at, "lies more than " + std::to_string(kMaxNodeDepth) + " nodes deep");
+        onPath[static_cast<std::size_t>(index)] = true;
+        const glm::dmat4 world = parent * localMatrix(node, at);
+        if (node.mesh >= 0) addMesh(node, node.mesh, world, at);
+        for (int child : node.children) visit(child, world, depth + 1, onPath);
+        onPath[static_cast<std::size_t>(index)] = false;
+    }
+
+    void addMesh(const tinygltf::Node& node, int meshIndex, const glm::dmat4& world, const std::string& nodeAt) {
+        if (static_cast<std::size_t>(meshIndex) >= model_.meshes.size())
+            fail(nodeAt, "refers to mesh " + std::to_string(meshIndex) + ", but the file has " + std::to_string(model_.meshes.size()));
+        const tinygltf::Mesh& gm = model_.meshes[static_cast<std::size_t>(meshIndex)];
+        for (double v : {world[0][0], world[0][1], world[0][2], world[1][0], world[1][1], world[1][2], world[2][0],
+                         world[2][1], world[2][2], world[3][0], world[3][1], world[3][2]})
+            if (!std::isfinite(v)) fail(nodeAt, "places its mesh with a matrix that is not finite");
+        const glm::dmat3 linear(world);
+        const double det = glm::determinant(linear);
+        if (!(std::abs(det) > 1e-30)) {
+            warn(nodeAt + " scales its mesh to nothing (a singular matrix); left out");
+            return;
+        }
+        const glm::dmat3 normalMatrix = glm::inverseTranspose(linear);
+        const std::string baseName = !node.name.empty() ? node.name : !gm.name.empty() ? gm.name : "mesh " + std::to_string(meshIndex);
+        for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = gm.primitives[p];
+            const std::string at = element("mesh", static_cast<std::size_t>(meshIndex), gm.name) + " primitive " + std::to_string(p);
+            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
+                warn(at + " draws points or lines (mode " + std::to_string(prim.mode) + "); left out");
+                continue;
+            }
+            auto attribute = [&](const char* name) {
+                auto it = prim.attributes.find(name);
+                return it == prim.attributes.end() ? -1 : it->second;
+            };
+            const int positionAccessor = attribute("POSITION");
+            if (positionAccessor < 0) fail(at, "has no POSITION attribute");
+            const auto positions = readFloats<3>(positionAccessor, at + " POSITION");
+            const std::size_t n = positions.size();
+            auto sameCount = [&](std::size_t count, const char* what) {
+                if (count != n)
+                    fail(at, std::string(what) + " has " + std::to_string(count) + " elements for " + std::to_string(n) +
+                                 " positions");
+            };
+            Mesh mesh;
+            mesh.name = gm.primitives.size() > 1 ? baseName + " " + std::to_string(p + 1) : baseName;
+            mesh.positions.resize(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::dvec4 w = world * glm::dvec4(positions[i][0], positions[i][1], positions[i][2], 1.0);
+                mesh.positions[i] = glm::vec3(w);
+            }
+            const int normalAccessor = attribute("NORMAL");
+            if (normalAccessor >= 0) {
+                const auto normals = readFloats<3>(normalAccessor, at + " NORMAL");
+                sameCount(normals.size(), "NORMAL");
+                mesh.normals.resize(n);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const glm::dvec3 v = normalMatrix * glm::dvec3(normals[i][0], normals[i][1], normals[i][2]);
+                    const double length = glm::length(v);
+                    mesh.normals[i] = length > 0.0 && std::isfinite(length) ? glm::vec3(v / length) : glm::vec3(0, 0, 0);
+                }
+            }
+            const int uvAccessor = attribute("TEXCOORD_0");
+            if (uvAccessor >= 0) {
+                const auto uvs = readFloats<2>(uvAccessor, at + " TEXCOORD_0");
+                sameCount(uvs.size(), "TEXCOORD_0");
+                mesh.uvs.resize(n);
+                for (std::size_t i = 0; i < n; ++i) mesh.uvs[i] = glm::vec2(uvs[i][0], uvs[i][1]);
+            }
+            const int tangentAccessor = attribute("TANGENT");
+            if (tangentAccessor >= 0 && normalAccessor >= 0) {
+                const auto tangents = readFloats<4>(tangentAccessor, at + " TANGENT");
+                sameCount(tangents.size(), "TANGENT");
+                mesh.tangents.resize(n);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const glm::dvec3 t = linear * glm::dvec3(tangents[i][0], tangents[i][1], tangents[i][2]);
+                    const double length = glm::length(t);
+                    const float w = (tangents[i][3] < 0.0f ? -1.0f : 1.0f) * (det < 0.0 ? -1.0f : 1.0f);
+                    mesh.tangents[i] = glm::vec4(length > 0.0 ? glm::vec3(t / length) : glm::vec3(1, 0, 0), w);
+                }
+            }
+            // Triangles: from the indices, or the vertices in order.
+            std::vector<std::uint32_t> corners;
+            if (prim.indices >= 0) {
+                corners = readIndices(prim.indices, at, n);
+            } else {
+                if (n > 0xffffffffu) fail(at, "has more vertices than 32-bit indices reach");
+                corners.resize(n);
+                for (std::size_t i = 0; i < n; ++i) corners[i] = static_cast<std::uint32_t>(i);
+            }
+            mesh.indices = triangles(corners, prim.mode);
+            if (det < 0.0)  // a mirroring matrix turns the winding: turn it back so front faces stay front
+                for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+            dropDegenerate(mesh, at);
+            if (mesh.indices.empty()) {
+                warn(at + " has no triangles with area; left out");
+                continue;
+            }
+            if (mesh.normals.empty()) {
+                computeVertexNormals(mesh);
+            } else {
+                // A zero normal in the file: the computed one there.
+                Mesh computed = mesh;
+                computeVertexNormals(computed);
+                for (std::size_t i = 0; i < n; ++i)
+                    if (glm::dot(mesh.normals[i], mesh.normals[i]) == 0.0f) mesh.normals[i] = computed.normals[i];
+            }
+            if (prim.material >= 0 && static_cast<std::size_t>(prim.material) >= model_.materials.size())
+                fail(at, "refers to material " + std::to_string(prim.material) + ", but the file has " +
+                             std::to_string(model_.materials.size()));
+            const bool normalMapped = prim.material >= 0 &&
+                                      !asset_.materials[static_cast<std::size_t>(prim.material)].material.layers.maps.normal.empty();
+            if (normalMapped && mesh.tangents.empty() && !mesh.uvs.empty()) computeTangents(mesh);
+            computeBounds(mesh);
+            AssetPart part;
+            part.name = mesh.name;
+            part.material = prim.material;
+            part.mesh = std::make_shared<const Mesh>(std::move(mesh));
+            asset_.parts.push_back(std::move(part));
+        }
+    }
+
+    std::vector<std::uint32_t> triangles(const std::vector<std::uint32_t>& c, int mode) const {
+        std::vector<std::uint32_t> out;
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (std::size_t i = 0; i + 2 < c.size(); ++i) {
+                if (i % 2 == 0) out.insert(out.end(), {c[i], c[i + 1], c[i + 2]});
+                else out.insert(out.end(), {c[i + 1], c[i], c[i + 2]});
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            for (std::size_t i = 1; i + 1 < c.size(); ++i) out.insert(out.end(), {c[0], c[i], c[i + 1]});
+        } else {
+            out.assign(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(c.size() - c.size() % 3));
+        }
+        return out;
+    }
+
+    // Zero-area triangles go (mesh.h's rule: height below 1e-7 of the longest edge), and the
+    // vertices no triangle uses then, so the bounds hold only what is drawn.
+    void dropDegenerate(Mesh& mesh, const std::string& at) {
+        std::vector<std::uint32_t> kept;
+        kept.reserve(mesh.indices.size());
+        std::size_t dropped = 0;
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+                c(mesh.positions[mesh.indices[t + 2]]);
+            const glm::dvec3 e0 = b - a, e1 = c - a, e2 = c - b;
+            const glm::dvec3 nrm = glm::cross(e0, e1);
+            const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
+            if (glm::dot(nrm, nrm) <= 1e-14 * longest2 * longest2) {
+                ++dropped;
+                continue;
+            }
+            kept.insert(kept.end(), {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]});
+        }
+        if (dropped > 0) warn(at + ": " + std::to_string(dropped) + " degenerate (zero-area) triangles dropped");
+        mesh.indices = std::move(kept);
+        std::vector<std::uint32_t> remap(mesh.positions.size(), 0xffffffffu);
+        std::uint32_t next = 0;
+        for (std::uint32_t& i : mesh.indices) {
+            if (remap[i] == 0xffffffffu) remap[i] = next++;
+            i = remap[i];
+        }
+        if (next == mesh.positions.size()) return;
+        auto compact = [&](auto& values) {
+            if (values.empty()) return;
+            std::remove_reference_t<decltype(values)> out(next);
+            for (std::size_t v = 0; v < remap.size(); ++v)
+                if (remap[v] != 0xffffffffu) out[remap[v]] = values[v];
+            values = std::move(out);
+        };
+        compact(mesh.positions);
+        compact(mesh.normals);
+        compact(mesh.uvs);
+        compact(mesh.tangents);
+    }
+
+    Asset read() {
+        for (const std::string& e : model_.extensionsRequired)
+            if (!kSupportedExtensions.count(e))
+                throw AssetError(file_, "requires the extension " + e + ", which mipgloss does not read");
+        for (const std::string& e : model_.extensionsUsed)
+            if (!kSupportedExtensions.count(e)) warn("uses the extension " + e + ", which is not read (drawn without it)");
+        readMaterials();
+        std::vector<bool> onPath(model_.nodes.size(), false);
+        std::vector<int> roots;
+        if (!model_.scenes.empty()) {
+            const int s = model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) < model_.scenes.size()
+                              ? model_.defaultScene : 0;
+            roots = model_.scenes[static_cast<std::size_t>(s)].nodes;
+        } else {
+            // No scene: every node no other node names as a child.
+            std::vector<bool> child(model_.nodes.size(), false);
+            for (const tinygltf::Node& node : model_.nodes)
+                for (int c : node.children)
+                    if (c >= 0 && static_cast<std::size_t>(c) < child.size()) child[static_cast<std::size_t>(c)] = true;
+            for (std::size_t i = 0; i < model_.nodes.size(); ++i)
+                if (!child[i]) roots.push_back(static_cast<int>(i));
+        }
+        for (int root : roots) visit(root, glm::dmat4(1.0), 0, onPath);
+        if (asset_.parts.empty()) throw AssetError(file_, "no triangles to draw (no mesh in the scene has any)");
+        // Part names unique, as scene objects' are shown.
+        std::set<std::string> taken;
+        for (AssetPart& part : asset_.parts) {
+            part.name = uniqueName(part.name, [&](const std::string& s) { return taken.count(s) > 0; });
+            taken.insert(part.name);
+        }
+        return std::move(asset_);
+    }
+
+private:
+    const tinygltf::Model& model_;
+    fs::path file_;
+    Asset asset_;
+};
+
+std::vector<unsigned char> readFileBytes(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw AssetError(path, kFileNotFound);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw AssetError(path, "cannot open the file");
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const fs::path& file) {
+    if (bytes.empty()) throw AssetError(file, "file is empty (0 bytes)");
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess{false, false});
+    return Reader(model, file).read();
+}
+
+Asset loadGltfFile(const fs::path& path) {
+    const std::vector<unsigned char> bytes = readFileBytes(path);
+    if (bytes.empty()) throw AssetError(path, "file is empty (0 bytes)");
+    const tinygltf::Model model = parseModel(bytes, path, FileAccess{true, false});
+    return Reader(model, path).read();
+}
+
+EncodedImage gltfImageBytes(const fs::path& file, int image) {
+    // The last file's images stay for the next call: a material's maps are decoded one after
+    // another (or at once, on several threads), and each would otherwise parse the file again.
+    static std::mutex mutex;
+    static fs::path lastFile;
+    static fs::file_time_type lastTime;
+    static std::vector<EncodedImage> lastImages;
+    std::lock_guard lock(mutex);
+    std::error_code ec;
+    const fs::file_time_type time = fs::last_write_time(file, ec);
+    if (file != lastFile || time != lastTime) {
+        lastImages.clear();
+        lastFile.clear();
+        const std::vector<unsigned char> bytes = readFileBytes(file);
+        const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true});
+        for (const tinygltf::Image& i : model.images) lastImages.push_back(EncodedImage{i.image, i.mimeType});
+        lastFile = file;
+        lastTime = time;
+    }
+    if (image < 0 || static_cast<std::size_t>(image) >= lastImages.size())
+        throw AssetError(file, "image " + std::to_string(image) + " is not in the file (it has " +
+                                   std::to_string(lastImages.size()) + ")");
+    if (lastImages[static_cast<std::size_t>(image)].bytes.empty())
+        throw AssetError(file, "image " + std::to_string(image) + " has no data");
+    return lastImages[static_cast<std::size_t>(image)];
+}
+
+}  // namespace mipgloss

@@ -1,0 +1,70 @@
+// A layered material's texture maps (core/scene/scene.h, MaterialMaps; docs/assets.md), read at
+// the fragment's UV. Included by object.frag and aov.frag after layered.glsl. Without maps
+// (uHasMaps false) nothing here is read and the material is its uniforms alone, as before.
+in vec2 vUv;
+in vec4 vTangent;  // world xyz, w: the bitangent's sign
+
+uniform bool uHasMaps;
+uniform sampler2D uBaseColorMap;  // unit 8: sRGB, so reads are linear
+uniform sampler2D uMetallicMap;   // unit 9
+uniform sampler2D uRoughnessMap;  // unit 10
+uniform sampler2D uNormalMap;     // unit 11
+uniform sampler2D uOcclusionMap;  // unit 12
+uniform sampler2D uEmissiveMap;   // unit 13: sRGB
+uniform bool uUseBaseColorMap, uUseMetallicMap, uUseRoughnessMap, uUseNormalMap, uUseOcclusionMap, uUseEmissiveMap;
+uniform int uMetallicChannel, uRoughnessChannel;
+uniform vec3 uBaseColor;
+uniform float uBaseAlpha, uMetallic, uRoughness, uSpecular;
+uniform float uNormalScale, uOcclusionStrength;
+uniform vec3 uEmissive;
+uniform int uAlphaMode;  // ALPHA_OPAQUE, ALPHA_MASK, ALPHA_BLEND (drawn opaque)
+uniform float uAlphaCutoff;
+
+struct MaterialSample {
+    vec3 baseColor;
+    float alpha;
+    float metallic;
+    float roughness;
+    vec3 normal;     // world, unit: the mapped normal
+    float occlusion;
+    vec3 emissive;
+    bool cut;        // alpha below the mask's cutoff
+};
+
+float channelOf(vec4 texel, int channel) { return texel[clamp(channel, 0, 3)]; }
+
+// The maps at this fragment; `n` is the interpolated world normal (already facing the viewer).
+MaterialSample sampleMaterial(vec3 n) {
+    MaterialSample s;
+    vec4 base = uUseBaseColorMap ? texture(uBaseColorMap, vUv) : vec4(1.0);
+    s.baseColor = clamp(uBaseColor * base.rgb, 0.0, 1.0);
+    s.alpha = uBaseAlpha * base.a;
+    s.metallic = clamp(uMetallic * (uUseMetallicMap ? channelOf(texture(uMetallicMap, vUv), uMetallicChannel) : 1.0), 0.0, 1.0);
+    s.roughness = clamp(uRoughness * (uUseRoughnessMap ? channelOf(texture(uRoughnessMap, vUv), uRoughnessChannel) : 1.0), 0.0, 1.0);
+    s.normal = n;
+    if (uUseNormalMap) {
+        vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
+        float tl = length(t);
+        if (tl > 1e-6) {
+            t /= tl;
+            vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+            vec3 m = texture(uNormalMap, vUv).xyz * 2.0 - 1.0;
+            m.xy *= uNormalScale;
+            vec3 mapped = t * m.x + b * m.y + n * m.z;
+            float ml = length(mapped);
+            if (ml > 1e-6) s.normal = mapped / ml;
+        }
+    }
+    s.occlusion = uUseOcclusionMap ? 1.0 + uOcclusionStrength * (texture(uOcclusionMap, vUv).r - 1.0) : 1.0;
+    s.emissive = uEmissive * (uUseEmissiveMap ? texture(uEmissiveMap, vUv).rgb : vec3(1.0));
+    s.cut = uAlphaMode == ALPHA_MASK && s.alpha < uAlphaCutoff;
+    return s;
+}
+
+// n(r) = kRoughnessFit·(r^−4 − 1) (specular.h, roughnessToExponent); r = 0 is the mirror.
+float roughnessExponent(float r) {
+    return r > 0.0 ? ROUGHNESS_FIT * (1.0 / (r * r * r * r) - 1.0) : intBitsToFloat(0x7f800000);
+}
+
+// λ(n) = max(0, log2(128·√3) − ½·log2(n + 1)) (phong.h, exponentToLambda).
+float exponentLambda(float n) { return isinf(n) ? 0.0 : max(0.0, 0.5 * log2(LAMBDA_EXPONENT_SCALE / (n + 1.0))); }
