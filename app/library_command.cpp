@@ -4,6 +4,7 @@
 #include "offscreen_session.h"
 
 #include "mipgloss/ibl/phong.h"
+#include "mipgloss/scene/asset.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/library.h"
 #include "mipgloss/ui/atomic_file.h"
@@ -32,6 +33,7 @@ const char* const kLibraryUsage = R"(
                        [--tint R,G,B] [--irradiance] [--grazing]
                        [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0]
                        [--coat W] [--coat-roughness R]
+  mipgloss library import-gltf LIB.mglib ASSET
   mipgloss library remove LIB.mglib NAME
   mipgloss library rename LIB.mglib OLD NEW
   mipgloss library thumbnails LIB.mglib [--env FILE] [--size PX] [--env-size N] --out DIR
@@ -53,6 +55,9 @@ library: the material library files mipgloss-gui keeps (format "mipgloss-library
                  --base-color, --metallic, --roughness, --specular, --coat, --coat-roughness
                  makes it a layered material (as for render; --lambda/--exponent then set its
                  glossy layer's lobe, --irradiance its diffuse base from the irradiance map)
+  import-gltf    adds every material of ASSET (glTF .gltf/.glb, or OBJ with its MTL) under its
+                 name in the file (" 2", " 3" after a name the library has), layered, with its
+                 texture maps referring to the asset's images by absolute path (docs/assets.md)
   remove         removes material NAME
   rename         renames material OLD to NEW (NEW must be free)
   thumbnails     one PNG per material in DIR (created if missing), PX x PX pixels (default
@@ -141,7 +146,15 @@ int list(Args args) {
         const Material& m = entry.material;
         if (m.layered) {
             std::cout << entry.name << "\tlayered\t" << layersText(m.layers, "\t")
-                      << (m.useIrradiance ? "\tirradiance" : "") << '\n';
+                      << (m.useIrradiance ? "\tirradiance" : "");
+            // Texture maps (an imported asset's): which parameters come from a texture.
+            const MaterialMaps& maps = m.layers.maps;
+            const std::pair<const char*, const TextureRef*> textures[] = {
+                {"base-color", &maps.baseColor}, {"metallic", &maps.metallic},   {"roughness", &maps.roughness},
+                {"normal", &maps.normal},        {"occlusion", &maps.occlusion}, {"emissive", &maps.emissive}};
+            for (const auto& [what, ref] : textures)
+                if (!ref->empty()) std::cout << "\t" << what << "-map " << ref->key();
+            std::cout << '\n';
             continue;
         }
         std::cout << entry.name << '\t' << "lambda " << numberText(m.lambda) << '\t' << "n " << exponentText(m.lambda)
@@ -190,6 +203,34 @@ int add(Args args) {
     library.entries.push_back({*name, material});
     ui::saveLibrary(library, file);
     std::cout << "added \"" << *name << "\" (" << describe(material) << ") to " << file.string() << '\n';
+    return 0;
+}
+
+int importGltf(Args args) {
+    const fs::path file = libraryArgument(args, "import-gltf");
+    if (args.empty()) throw UsageError("library import-gltf needs ASSET (a .gltf, .glb or .obj file)");
+    const fs::path assetPath = fs::absolute(args.next()).lexically_normal();
+    if (!args.empty()) throw UsageError("library import-gltf takes one ASSET");
+    if (!isAssetFile(assetPath)) throw UsageError("library import-gltf: " + assetPath.string() + " is not a .gltf, .glb or .obj file");
+    const Asset asset = loadAsset(assetPath);
+    for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    if (asset.materials.empty()) throw AssetError(assetPath, "has no materials to import");
+    std::error_code ec;
+    const bool exists = fs::exists(file, ec);
+    if (ec) throw ui::LibraryFileError(file, "cannot read: " + ec.message());
+    MaterialLibrary library = exists ? load(file) : MaterialLibrary{};
+    std::vector<std::string> added;
+    for (const AssetMaterial& m : asset.materials) {
+        std::string name = m.name;
+        if (!materialNameProblem(name).empty()) name = "Material";
+        name = library.uniqueName(name);
+        library.entries.push_back({name, m.material});
+        added.push_back("\"" + name + "\"" + (name == m.name ? std::string() : " (\"" + m.name + "\" in the file)") +
+                        (m.material.layers.maps.anyTexture() ? ", textured" : ""));
+    }
+    ui::saveLibrary(library, file);  // one write: all of the asset's materials or none
+    for (const std::string& a : added) std::cout << "added " << a << '\n';
+    std::cout << added.size() << (added.size() == 1 ? " material" : " materials") << " from " << assetPath.string() << " added to " << file.string() << '\n';
     return 0;
 }
 
@@ -268,18 +309,19 @@ int thumbnails(Args args, const char* argv0) {
 }  // namespace
 
 int runLibrary(Args args, const char* argv0) {
-    if (args.empty()) throw UsageError("library needs a subcommand: list, add, remove, rename or thumbnails");
+    if (args.empty()) throw UsageError("library needs a subcommand: list, add, import-gltf, remove, rename or thumbnails");
     const std::string command = args.next();
     if (command == "list") return list(std::move(args));
     if (command == "add") return add(std::move(args));
     if (command == "remove") return remove(std::move(args));
+    if (command == "import-gltf") return importGltf(std::move(args));
     if (command == "rename") return rename(std::move(args));
     if (command == "thumbnails") return thumbnails(std::move(args), argv0);
     if (command == "--help" || command == "-h") {
         std::cout << kLibraryUsage;
         return 0;
     }
-    throw UsageError("unknown library subcommand '" + command + "' (list, add, remove, rename, thumbnails)");
+    throw UsageError("unknown library subcommand '" + command + "' (list, add, import-gltf, remove, rename, thumbnails)");
 }
 
 }  // namespace mipgloss::app

@@ -397,7 +397,7 @@ TEST(SceneListModel, TooltipNamesLambdaModeAndTriangles) {
     // A layered material is named by its layers, not by the single lobe's λ it does not use.
     Material paint;
     paint.layered = true;
-    paint.layers = {Rgb(0.6f, 0.04f, 0.03f), 0.0f, 0.25f, 0.04f, 1.0f, 0.03f};
+    paint.layers = {Rgb(0.6f, 0.04f, 0.03f), 0.0f, 0.25f, 0.04f, 1.0f, 0.03f, MaterialMaps{}};
     doc.setMaterial(2, paint);
     const QString layered = model.data(model.index(2), Qt::ToolTipRole).toString();
     EXPECT_TRUE(layered.contains(QStringLiteral("base 0.60, 0.04, 0.03"))) << layered.toStdString();

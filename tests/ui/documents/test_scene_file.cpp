@@ -205,9 +205,9 @@ TEST(SceneFile, BadJsonNamesTheFile) {
     EXPECT_NE(notScene.find("format"), std::string::npos) << notScene;
 
     const std::string newer =
-        loadError(dir, "future.json", R"({"format": "mipgloss-scene", "version": 7})");
+        loadError(dir, "future.json", R"({"format": "mipgloss-scene", "version": 8})");
     EXPECT_NE(newer.find("future.json"), std::string::npos) << newer;
-    EXPECT_NE(newer.find("version 7"), std::string::npos) << newer;
+    EXPECT_NE(newer.find("version 8"), std::string::npos) << newer;
 
     try {
         (void)loadScene(fs::path(dir.path().toStdString()) / "absent.json");
@@ -631,7 +631,7 @@ TEST(SceneFile, LayeredMaterialsRoundTripAndBadLayersAreRefused) {
     ball.meshSource = "builtin:sphere";
     Material paint;
     paint.layered = true;
-    paint.layers = {Rgb(0.1f, 0.3f, 0.7f), 0.25f, 0.4f, 0.05f, 0.8f, 0.02f};
+    paint.layers = {Rgb(0.1f, 0.3f, 0.7f), 0.25f, 0.4f, 0.05f, 0.8f, 0.02f, MaterialMaps{}};
     scene.addObject(ball, paint);
     const fs::path file = fs::path(dir.path().toStdString()) / "layered.mipgloss";
     saveScene(scene, file);

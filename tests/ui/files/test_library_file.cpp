@@ -142,8 +142,8 @@ TEST(LibraryFile, UnreadableFilesAreRefusedAndKept) {
         {"array.json", "[1, 2]", "top level is not a JSON object"},
         {"scene.json", R"({"format": "mipgloss-scene", "version": 3})", "\"mipgloss-scene\", not \"mipgloss-library\""},
         {"noformat.json", R"({"materials": []})", "no \"format\""},
-        {"newer.json", R"({"format": "mipgloss-library", "version": 3, "materials": []})",
-         "version 3 is newer than this program reads (2)"},
+        {"newer.json", R"({"format": "mipgloss-library", "version": 4, "materials": []})",
+         "version 4 is newer than this program reads (3)"},
         {"noversion.json", R"({"format": "mipgloss-library", "materials": []})", "\"version\""},
         {"nomaterials.json", R"({"format": "mipgloss-library", "version": 1})", "\"materials\" must be an array"},
         {"materials-object.json", R"({"format": "mipgloss-library", "version": 1, "materials": {}})",
@@ -229,12 +229,12 @@ TEST(LibraryFile, LayeredMaterialsRoundTripEveryParameter) {
     MaterialLibrary library = fiveMaterials();
     Material paint;
     paint.layered = true;
-    paint.layers = {Rgb(0.6f, 0.05f, 0.02f), 0.0f, 0.45f, 0.05f, 1.0f, 0.03f};
+    paint.layers = {Rgb(0.6f, 0.05f, 0.02f), 0.0f, 0.45f, 0.05f, 1.0f, 0.03f, MaterialMaps{}};
     library.entries.push_back({"car paint", paint});
     Material gold;
     gold.layered = true;
     gold.useIrradiance = true;
-    gold.layers = {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.0f, 0.04f, 0.0f, 0.05f};  // a mirror-smooth metal
+    gold.layers = {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.0f, 0.04f, 0.0f, 0.05f, MaterialMaps{}};  // a mirror-smooth metal
     library.entries.push_back({"polished gold", gold});
     EXPECT_EQ(libraryFromJson(libraryToJson(library), "x.json"), library);
 

@@ -1,5 +1,7 @@
 #include "material_json.h"
 
+#include "mipgloss/ui/scene_file.h"
+
 #include "mipgloss/ibl/specular.h"
 
 #include <QJsonDocument>
@@ -32,7 +34,37 @@ std::string jsonText(const QJsonValue& v) {
 
 QJsonArray vec3ToJson(const glm::vec3& v) { return QJsonArray{v.x, v.y, v.z}; }
 
-QJsonObject materialToJson(const Material& m) {
+namespace {
+
+QJsonObject textureToJson(const TextureRef& t, const std::filesystem::path& fileForPaths) {
+    QJsonObject out{
+        {"file", QString::fromStdString(fileForPaths.empty() ? t.file : relativePathForScene(t.file, fileForPaths))},
+        {"channel", t.channel},
+    };
+    if (t.image >= 0) out.insert("image", t.image);
+    return out;
+}
+
+QJsonObject mapsToJson(const MaterialMaps& m, const std::filesystem::path& fileForPaths) {
+    QJsonObject out;
+    const std::pair<const char*, const TextureRef*> textures[] = {
+        {"baseColorTexture", &m.baseColor}, {"metallicTexture", &m.metallic},   {"roughnessTexture", &m.roughness},
+        {"normalTexture", &m.normal},       {"occlusionTexture", &m.occlusion}, {"emissiveTexture", &m.emissive},
+    };
+    for (const auto& [key, ref] : textures)
+        if (!ref->empty()) out.insert(QLatin1String(key), textureToJson(*ref, fileForPaths));
+    out.insert("normalScale", m.normalScale);
+    out.insert("occlusionStrength", m.occlusionStrength);
+    out.insert("emissiveFactor", vec3ToJson(m.emissiveFactor));
+    out.insert("baseAlpha", m.baseAlpha);
+    out.insert("alphaMode", alphaModeName(m.alphaMode));
+    out.insert("alphaCutoff", m.alphaCutoff);
+    return out;
+}
+
+}  // namespace
+
+QJsonObject materialToJson(const Material& m, const std::filesystem::path& fileForPaths) {
     const double exponent = lambdaToExponent(static_cast<double>(m.lambda));
     QJsonObject out{
         {"lambda", m.lambda},
@@ -56,6 +88,11 @@ QJsonObject materialToJson(const Material& m) {
                              {"coatRoughness", l.coatRoughness},
                              {"coatExponent", exponentJson(roughnessToExponent(l.coatRoughness))},
                          });
+    if (!(l.maps == MaterialMaps{})) {
+        QJsonObject layers = out.value("layers").toObject();
+        layers.insert("maps", mapsToJson(l.maps, fileForPaths));
+        out.insert("layers", layers);
+    }
     return out;
 }
 
@@ -191,7 +228,58 @@ Layers JsonReader::layers(const QJsonObject& o, const std::string& where) const 
     l.specular = unit("specular", l.specular);
     l.coat = unit("coat", l.coat);
     l.coatRoughness = unit("coatRoughness", l.coatRoughness);
+    const QJsonValue maps = o.value(QLatin1String("maps"));
+    if (!maps.isUndefined()) {
+        const std::string at = keyName(where, "maps");
+        if (!maps.isObject()) fail("\"" + at + "\" must be an object");
+        l.maps = this->maps(maps.toObject(), at);
+    }
     return l;
+}
+
+MaterialMaps JsonReader::maps(const QJsonObject& o, const std::string& where) const {
+    MaterialMaps m;
+    auto texture = [&](const char* key, TextureRef& out) {
+        const QJsonValue v = o.value(QLatin1String(key));
+        if (v.isUndefined()) return;
+        const std::string at = keyName(where, key);
+        if (!v.isObject()) fail("\"" + at + "\" must be an object");
+        const QJsonObject t = v.toObject();
+        const std::string stored = string(t, "file", at, nullptr);
+        if (stored.empty()) fail("\"" + keyName(at, "file") + "\" is empty");
+        out.file = resolvePathForScene(stored, file()).string();
+        out.image = integer(t, "image", at, -1);
+        if (out.image < -1) fail("\"" + keyName(at, "image") + "\" is " + show(out.image) + ": an image index is >= 0");
+        out.channel = integer(t, "channel", at, 0);
+        if (out.channel < 0 || out.channel > 3)
+            fail("\"" + keyName(at, "channel") + "\" is " + show(out.channel) + ": a channel is 0 (R) to 3 (A)");
+    };
+    texture("baseColorTexture", m.baseColor);
+    texture("metallicTexture", m.metallic);
+    texture("roughnessTexture", m.roughness);
+    texture("normalTexture", m.normal);
+    texture("occlusionTexture", m.occlusion);
+    texture("emissiveTexture", m.emissive);
+    auto ranged = [&](const char* key, float fallback, double lo, double hi) {
+        const double v = number(o, key, where, fallback);
+        if (!(v >= lo && v <= hi))
+            fail("\"" + keyName(where, key) + "\" is " + show(v) + ": it must be in [" + show(lo) + ", " + show(hi) + "]");
+        return static_cast<float>(v);
+    };
+    m.normalScale = ranged("normalScale", m.normalScale, -kMaxNormalScale, kMaxNormalScale);
+    m.occlusionStrength = ranged("occlusionStrength", m.occlusionStrength, 0.0, 1.0);
+    m.baseAlpha = ranged("baseAlpha", m.baseAlpha, 0.0, 1.0);
+    m.alphaCutoff = ranged("alphaCutoff", m.alphaCutoff, 0.0, 1.0);
+    m.emissiveFactor = vec3(o, "emissiveFactor", where, m.emissiveFactor);
+    for (int c = 0; c < 3; ++c)
+        if (!(m.emissiveFactor[c] >= 0.0f && m.emissiveFactor[c] <= kMaxEmissive))
+            fail("\"" + keyName(where, "emissiveFactor") + "[" + std::to_string(c) + "]\" is " +
+                 show(m.emissiveFactor[c]) + ": emitted radiance is in [0, " + show(kMaxEmissive) + "]");
+    const std::string opaque = alphaModeName(AlphaMode::Opaque);
+    const std::string mode = string(o, "alphaMode", where, &opaque);
+    if (!parseAlphaMode(mode, m.alphaMode))
+        fail("\"" + keyName(where, "alphaMode") + "\" is \"" + mode + "\": it is opaque, mask or blend");
+    return m;
 }
 
 double JsonReader::lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const {

@@ -40,7 +40,10 @@ QJsonArray vec3ToJson(const glm::vec3& v);
 //    "specular": f0, "coat": c, "coatRoughness": r, "coatExponent": n | null}
 // (every value in [0, 1]; the exponents, n = roughnessToExponent, are for readers and not read).
 // A file without "layers" holds the paper's single-lobe material, as every older file does.
-QJsonObject materialToJson(const Material& material);
+// Texture maps (assets) go in "layers"."maps", each texture {"file", "image" (a glTF's embedded
+// image), "channel"} with the file relative to `fileForPaths` as scene files write paths
+// (relativePathForScene; empty: written as held), and read back resolved against the file read.
+QJsonObject materialToJson(const Material& material, const std::filesystem::path& fileForPaths = {});
 
 // Reads the values of one JSON file, each checked for its type and range; every error names the
 // file and the key (fail, which each kind of file makes throw its own FileError type), warnings
@@ -96,6 +99,8 @@ public:
     Material material(const QJsonObject& o, const std::string& where) const;
     // A layered material's "layers" object (scene version 5, library version 2), at `where`.
     Layers layers(const QJsonObject& o, const std::string& where) const;
+    // A layered material's "maps" (scene version 7, library version 3), at `where`.
+    MaterialMaps maps(const QJsonObject& o, const std::string& where) const;
     // A λ (a material's or the background's) in today's meaning: an error unless the file holds a
     // number in its version's range, converted from a version 1 scene's face size (scene_file.h).
     double lambdaValue(const QJsonObject& o, const char* key, const std::string& where) const;

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/scene_file.h"
 
+#include "mipgloss/scene/asset.h"
+
 #include "mipgloss/ui/atomic_file.h"
 
 #include "material_json.h"
@@ -164,7 +166,7 @@ public:
 
     // Built-ins and files, each loaded once per scene file and shared by the objects using it.
     std::shared_ptr<const Mesh> mesh(const std::string& source, const std::string& where,
-                                     std::string& meshSource) {
+                                     std::string& meshSource, int part = -1) {
         if (isBuiltin(source)) {
             meshSource = source;
             auto& cached = cache_[source];
@@ -181,6 +183,7 @@ public:
         }
         const fs::path resolved = resolvePathForScene(source, file());
         meshSource = resolved.string();
+        if (part >= 0) return assetPart(resolved, part, where);
         auto& cached = cache_[meshSource];
         if (cached) return cached;
         std::error_code ec;
@@ -198,7 +201,28 @@ public:
     }
 
 private:
+    // Part `part` of an asset file (asset.h), each file read once per scene file.
+    std::shared_ptr<const Mesh> assetPart(const fs::path& resolved, int part, const std::string& where) {
+        auto& cached = assets_[resolved.string()];
+        if (!cached) {
+            std::error_code ec;
+            if (!fs::is_regular_file(resolved, ec))
+                fail("asset file \"" + resolved.string() + "\" of " + where + " not found");
+            try {
+                cached = std::make_shared<const Asset>(loadAsset(resolved));
+                for (const std::string& w : cached->warnings) warn(w);
+            } catch (const FileError& e) {
+                fail("asset of " + where + ": " + e.what());
+            }
+        }
+        if (static_cast<std::size_t>(part) >= cached->parts.size())
+            fail("\"" + where + "\": part " + std::to_string(part) + " of " + resolved.string() + ", which has " +
+                 std::to_string(cached->parts.size()) + " parts (the file changed since the scene was saved?)");
+        return cached->parts[static_cast<std::size_t>(part)].mesh;
+    }
+
     std::map<std::string, std::shared_ptr<const Mesh>> cache_;
+    std::map<std::string, std::shared_ptr<const Asset>> assets_;
 };
 
 }  // namespace
@@ -241,7 +265,7 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
     QJsonArray materials;
     for (const NamedMaterial& named : scene.materials) {
         if (scene.usersOf(named.id) == 0) continue;
-        QJsonObject material = materialToJson(named.material);
+        QJsonObject material = materialToJson(named.material, sceneFile);
         material.insert("name", QString::fromStdString(named.name));
         if (!named.libraryEntry.empty()) material.insert("library", QString::fromStdString(named.libraryEntry));
         materials.append(material);
@@ -260,6 +284,7 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
             {"visible", o.visible},
             {"transform", transform},
         };
+        if (o.meshPart >= 0) object.insert("part", o.meshPart);
         if (named) object.insert("material", QString::fromStdString(named->name));
         objects.append(object);
     }
@@ -345,7 +370,9 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
                                              where + ".material"));
         }
         const std::string source = reader.string(o, "mesh", where, nullptr);
-        object.mesh = reader.mesh(source, where + " (\"" + object.name + "\")", object.meshSource);
+        object.meshPart = reader.integer(o, "part", where, -1);
+        if (object.meshPart < -1) reader.fail("\"" + where + ".part\" is " + std::to_string(object.meshPart) + ": a part is >= 0");
+        object.mesh = reader.mesh(source, where + " (\"" + object.name + "\")", object.meshSource, object.meshPart);
         scene.objects.push_back(std::move(object));
     }
     // Version 6: the saved view; older files have none and are framed when opened.

@@ -1,7 +1,7 @@
-// Material library files: JSON, format "mipgloss-library", version 2 (version 1 still loads).
+// Material library files: JSON, format "mipgloss-library", version 3 (versions 1 and 2 still load).
 //
 //   {
-//     "format": "mipgloss-library", "version": 2,
+//     "format": "mipgloss-library", "version": 3,
 //     "materials": [{"name": "Gold", "lambda": 3, "phongExponent": 767, "mode": "reflect",
 //                    "useIrradiance": false, "tint": [1, 0.8, 0.3], "sharperAtGrazing": false,
 //                    "layers": {"baseColor": [1, 0.78, 0.34], "metallic": 1, "roughness": 0.25, ...}}]
@@ -10,7 +10,9 @@
 // The material fields are the scene file's (scene_file.h; material_json.h), with the same checks:
 // λ in [0, kMaxLambda] (never silently clamped), "phongExponent" informative, tint finite and >= 0,
 // every layer value in [0, 1]. Version 2 added layered materials ("layers", optional); a version 1
-// file has none and loads as it always did. Files are written as version 2.
+// file has none and loads as it always did. Version 3 added texture maps ("layers"."maps", an
+// imported asset's: material_json.h), their files written as held (absolute, as imported: a
+// library outlives the folder it was saved from). Files are written as version 3.
 // Names must be valid (library.h materialNameProblem) and unique.
 //
 // Reading is all-or-nothing and never modifies the file: anything unreadable (not JSON, not a
@@ -31,7 +33,7 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kLibraryFormat = "mipgloss-library";
-inline constexpr int kLibraryVersion = 2;
+inline constexpr int kLibraryVersion = 3;
 
 class LibraryFileError : public FileError {
 public:

@@ -89,7 +89,10 @@
 namespace mipgloss::ui {
 
 inline constexpr const char* kSceneFormat = "mipgloss-scene";
-inline constexpr int kSceneVersion = 6;
+inline constexpr int kSceneVersion = 7;
+// The version that added assets: an object's "part" of an asset file (glTF, OBJ with MTL: asset.h)
+// and a layered material's texture "maps" (material_json.h), their files relative as "mesh" is.
+inline constexpr int kSceneVersionAssets = 7;
 // The version that saved the camera ("camera", optional; older files are framed when opened).
 inline constexpr int kSceneVersionCamera = 6;
 // A saved camera's vertical field of view, in degrees (inclusive).
