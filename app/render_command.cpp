@@ -67,7 +67,11 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
   SCENE.mipgloss a scene saved by mipgloss-gui (older .json scenes too); drawn through the
                  camera saved with it, if any (with --size's aspect), else framed
   --env FILE     environment (as for bake); replaces the scene's
-  --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM), repeatable; replaces the scene's objects
+  --mesh FILE    a mesh (OBJ, OFF, PLY, STL, OM) or an asset (glTF .gltf/.glb, OBJ with MTL),
+                 repeatable; replaces the scene's objects. An asset brings its parts, placed as
+                 its file places them, and its materials with their texture maps (a map that is
+                 missing is a warning, drawn without it); material flags given here override
+                 the materials' values (the maps stay)
   --library LIB.mglib --material NAME
                  every object wears material NAME of the library (one shared material);
                  --lambda, --exponent and --mode, when given too, change it

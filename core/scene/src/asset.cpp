@@ -58,6 +58,7 @@ ObjOutline outline(std::span<const unsigned char> bytes) {
                 const std::size_t a = rest.find_first_not_of(" \t\r");
                 if (a == std::string_view::npos) break;
                 rest.remove_prefix(a);
+                if (rest.front() == '#') break;  // a comment ends the line
                 const std::size_t b = std::min(rest.find_first_of(" \t\r"), rest.size());
                 out.libraries.emplace_back(rest.substr(0, b));
                 rest.remove_prefix(b);
@@ -70,6 +71,14 @@ ObjOutline outline(std::span<const unsigned char> bytes) {
 }  // namespace
 
 std::span<const char* const> assetExtensions() { return kAssetExtensions; }
+
+std::vector<const char*> importExtensions() {
+    std::vector<const char*> out(meshExtensions().begin(), meshExtensions().end());
+    for (const char* e : kAssetExtensions)
+        if (std::find_if(out.begin(), out.end(), [&](const char* o) { return std::string_view(o) == e; }) == out.end())
+            out.push_back(e);
+    return out;
+}
 
 bool isAssetFile(const fs::path& path) {
     const std::string ext = lowerExtension(path);

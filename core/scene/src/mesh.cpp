@@ -316,6 +316,34 @@ void computeVertexNormals(Mesh& mesh) {
     }
 }
 
+Mesh makeUvSphere(int rings, int segments) {
+    rings = std::max(rings, 2);
+    segments = std::max(segments, 3);
+    Mesh mesh;
+    mesh.name = "sphere";
+    for (int r = 0; r <= rings; ++r) {
+        const double theta = std::numbers::pi * r / rings;
+        for (int s = 0; s <= segments; ++s) {
+            const double phi = 2.0 * std::numbers::pi * s / segments;
+            const glm::vec3 p(glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+            mesh.positions.push_back(p);
+            mesh.normals.push_back(r == 0 ? glm::vec3(0, 1, 0) : r == rings ? glm::vec3(0, -1, 0) : glm::normalize(p));
+            mesh.uvs.emplace_back(static_cast<float>(s) / static_cast<float>(segments),
+                                  static_cast<float>(r) / static_cast<float>(rings));
+        }
+    }
+    auto at = [&](int r, int s) { return static_cast<std::uint32_t>(r * (segments + 1) + s); };
+    // Counter-clockwise seen from outside (as makeSphere); no triangles of zero area at the poles.
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            if (r > 0) mesh.indices.insert(mesh.indices.end(), {at(r, s), at(r, s + 1), at(r + 1, s + 1)});
+            if (r + 1 < rings) mesh.indices.insert(mesh.indices.end(), {at(r, s), at(r + 1, s + 1), at(r + 1, s)});
+        }
+    computeBounds(mesh);
+    computeTangents(mesh);
+    return mesh;
+}
+
 void computeTangents(Mesh& mesh) {
     const std::size_t n = mesh.positions.size();
     if (mesh.uvs.size() != n || mesh.normals.size() != n) {

@@ -25,6 +25,11 @@ const std::shared_ptr<const Mesh>& thumbnailSphere() {
     return sphere;
 }
 
+const std::shared_ptr<const Mesh>& texturedThumbnailSphere() {
+    static const auto sphere = std::make_shared<const Mesh>(makeUvSphere(48, 96));
+    return sphere;
+}
+
 }  // namespace
 
 Scene thumbnailScene(const Material& material, const EnvironmentSettings& settings) {
@@ -32,7 +37,9 @@ Scene thumbnailScene(const Material& material, const EnvironmentSettings& settin
     scene.environment = settings;
     SceneObject object;
     object.name = "sphere";
-    object.mesh = thumbnailSphere();
+    // A textured material on a sphere with UVs (its maps wrap once around it), others on the
+    // plain sphere every thumbnail has always used.
+    object.mesh = material.layered && material.layers.maps.anyTexture() ? texturedThumbnailSphere() : thumbnailSphere();
     object.meshSource = "builtin:sphere";
     scene.addObject(object, material);
     scene.display.showBackground = true;

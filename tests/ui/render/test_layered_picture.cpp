@@ -130,14 +130,14 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
 INSTANTIATE_TEST_SUITE_P(
     Materials, LayeredPicture,
     ::testing::Values(
-        LayeredCase{"red_plastic", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "forest", 128, 384},
-        LayeredCase{"rough_gold", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f}, "sunrise", 128, 384},
-        LayeredCase{"coated_blue", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f}, "sunrise", 128, 384},
+        LayeredCase{"red_plastic", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "forest", 128, 384},
+        LayeredCase{"rough_gold", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 128, 384},
+        LayeredCase{"coated_blue", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f, MaterialMaps{}}, "sunrise", 128, 384},
         // Other face sizes, and the sphere small on screen.
-        LayeredCase{"red_plastic_256", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "sunrise", 256, 384},
-        LayeredCase{"coated_blue_64", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f}, "forest", 64, 384},
-        LayeredCase{"rough_gold_small", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f}, "sunrise", 128, 96},
-        LayeredCase{"red_plastic_small", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f}, "forest", 256, 96}),
+        LayeredCase{"red_plastic_256", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 256, 384},
+        LayeredCase{"coated_blue_64", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f, MaterialMaps{}}, "forest", 64, 384},
+        LayeredCase{"rough_gold_small", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 128, 96},
+        LayeredCase{"red_plastic_small", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "forest", 256, 96}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 // A dielectric's specular weight rises toward the silhouette; a metal's is coloured (its F0).
@@ -145,7 +145,7 @@ TEST(LayeredPicture, DielectricWeightRisesTowardTheSilhouetteAndAMetalsIsColoure
     const auto file = test::asset("env/forest.exr");
     MIPGLOSS_REQUIRE_ASSET(file);
     const auto env = prepared(file, 64);
-    const Settled plastic = renderSettled(test::sphereScene(layered({Rgb(0.5f), 0.0f, 0.3f, 0.04f, 0.0f, 0.05f})), env, 192);
+    const Settled plastic = renderSettled(test::sphereScene(layered({Rgb(0.5f), 0.0f, 0.3f, 0.04f, 0.0f, 0.05f, MaterialMaps{}})), env, 192);
     double centre = 0.0, rim = 0.0;
     int centreCount = 0, rimCount = 0;
     for (std::size_t i = 0; i < plastic.aov.cosView.size(); ++i) {
@@ -163,7 +163,7 @@ TEST(LayeredPicture, DielectricWeightRisesTowardTheSilhouetteAndAMetalsIsColoure
     EXPECT_NEAR(centre, 0.04, 0.01);
     EXPECT_GT(rim, 3.0 * centre);
 
-    const Settled gold = renderSettled(test::sphereScene(layered({Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.3f, 0.04f, 0.0f, 0.05f})), env, 192);
+    const Settled gold = renderSettled(test::sphereScene(layered({Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.3f, 0.04f, 0.0f, 0.05f, MaterialMaps{}})), env, 192);
     for (std::size_t i = 0; i < gold.aov.cosView.size(); i += 97) {
         if (gold.aov.exponent[i] == 0.0f || gold.aov.cosView[i] < 0.5f) continue;
         const glm::vec3 w = gold.aov.specular.weight[i];
@@ -184,7 +184,7 @@ TEST(LayeredPicture, AWhiteDielectricInAWhiteFurnaceReturnsAtMostOne) {
     for (const int size : {64, 384})
     for (const float coat : {0.0f, 1.0f}) {
         const auto env = prepared(file, faceSize);
-        const Settled r = renderSettled(test::sphereScene(layered({Rgb(1.0f), 0.0f, 0.5f, 0.04f, coat, 0.3f})), env, size);
+        const Settled r = renderSettled(test::sphereScene(layered({Rgb(1.0f), 0.0f, 0.5f, 0.04f, coat, 0.3f, MaterialMaps{}})), env, size);
         float most = 0.0f, least = 2.0f, centre = 0.0f, bestMu = 0.0f;
         for (std::size_t i = 0; i < r.hdr.size(); ++i) {
             if (r.aov.exponent[i] == 0.0f) continue;

@@ -167,7 +167,7 @@ TEST(LibraryCommand, LayeredParametersRoundTrip) {
     ASSERT_EQ(library.entries.size(), 2u);
     const Material& paint = library.entries[0].material;
     EXPECT_TRUE(paint.layered);
-    const Layers expected{Rgb(0.6f, 0.05f, 0.02f), 0.1f, 0.45f, 0.05f, 0.9f, 0.03f};
+    const Layers expected{Rgb(0.6f, 0.05f, 0.02f), 0.1f, 0.45f, 0.05f, 0.9f, 0.03f, MaterialMaps{}};
     EXPECT_EQ(paint.layers, expected);
     const Layers& gold = library.entries[1].material.layers;
     EXPECT_NEAR(roughnessToExponent(gold.roughness), 200.0, 200.0 * 1e-5) << "--exponent sets the glossy lobe";

@@ -1,6 +1,8 @@
 #include "mipgloss/ui/mesh_importer.h"
 
+#include "mipgloss/scene/asset.h"
 #include "mipgloss/scene/mesh.h"
+#include "mipgloss/scene/textures.h"
 #include "mipgloss/scene/placement.h"
 #include "mipgloss/ui/scene_document.h"
 
@@ -16,31 +18,45 @@
 
 namespace mipgloss::ui {
 
-// One loaded mesh file (or its error), handed from the loader to finish().
+// One loaded file (or its error), handed from the loader to finish(): a plain mesh is an asset
+// of one part without a material (asset.h).
 struct MeshImporter::Loaded {
     QString path;
-    std::shared_ptr<const Mesh> mesh;
+    std::shared_ptr<const Asset> asset;
     QString error;
     std::vector<std::string> warnings;
 };
 
 namespace {
 
+// Reads the file and decodes the textures its materials read (textures.h), here: on the worker
+// thread for a large import, so the window only uploads them.
 MeshImporter::Loaded loadOne(const QString& path) {
     MeshImporter::Loaded result;
     result.path = path;
     try {
-        MeshReport report;
-        Mesh mesh = loadMesh(path.toStdString(), &report);
-        if (mesh.name.empty()) mesh.name = QFileInfo(path).completeBaseName().toStdString();
-        result.mesh = std::make_shared<const Mesh>(std::move(mesh));
-        result.warnings = std::move(report.warnings);
-    } catch (const MeshError& e) {
+        const std::string file = QFileInfo(path).absoluteFilePath().toStdString();
+        Asset asset = loadAsset(file);
+        for (AssetPart& part : asset.parts)
+            if (part.name.empty()) part.name = QFileInfo(path).completeBaseName().toStdString();
+        result.warnings = std::move(asset.warnings);
+        std::vector<TextureRef> textures;
+        for (const AssetMaterial& m : asset.materials)
+            for (const TextureRef& t : m.material.layers.maps.textures()) textures.push_back(t);
+        for (std::string& w : sharedTextureCache().load(textures)) result.warnings.push_back(std::move(w));
+        result.asset = std::make_shared<const Asset>(std::move(asset));
+    } catch (const FileError& e) {
         result.error = QString::fromStdString(e.what());
     } catch (const std::exception& e) {  // e.g. out of memory on a huge file
         result.error = path + QStringLiteral(": ") + QString::fromStdString(e.what());
     }
     return result;
+}
+
+std::size_t triangles(const Asset& asset) {
+    std::size_t n = 0;
+    for (const AssetPart& part : asset.parts) n += part.mesh->triangleCount();
+    return n;
 }
 
 }  // namespace
@@ -86,9 +102,13 @@ void MeshImporter::import(const QStringList& paths, Placement placement) {
 
 void MeshImporter::finish(const std::vector<Loaded>& results, Placement placement) {
     QStringList errors, added, names;
+    QStringList warnings;
     for (const Loaded& r : results) {
-        for (const std::string& w : r.warnings) std::cerr << "mipgloss: " << w << '\n';
-        if (r.mesh)
+        for (const std::string& w : r.warnings) {
+            std::cerr << "mipgloss: " << w << '\n';
+            warnings << QString::fromStdString(w);
+        }
+        if (r.asset)
             names << QFileInfo(r.path).fileName();
         else
             errors << r.error;
@@ -99,21 +119,49 @@ void MeshImporter::finish(const std::vector<Loaded>& results, Placement placemen
     if (!names.isEmpty() && placement == Placement::ReplaceObjects)
         for (int i = document_->objectCount() - 1; i >= 0; --i) document_->removeObject(i);
     for (const Loaded& r : results) {
-        if (!r.mesh) continue;
-        SceneObject object;
-        object.name = QFileInfo(r.path).completeBaseName().toStdString();
-        object.meshSource = QFileInfo(r.path).absoluteFilePath().toStdString();
-        object.mesh = r.mesh;
-        Material material;
-        material.lambda = kImportedLambda;
-        material.mode = LookupMode::Reflect;
-        object.transform = besideScene(document_->scene(), *r.mesh);
-        document_->addObject(std::move(object), material);
-        added << tr("%1 (%2 triangles)")
+        if (!r.asset) continue;
+        const Asset& asset = *r.asset;
+        // The asset's parts stay where its file put them relative to each other: one placement
+        // for all, from the box of all parts.
+        Mesh box;
+        box.bounds = assetBounds(asset);
+        const Transform where = besideScene(document_->scene(), box);
+        Material plain;
+        plain.lambda = kImportedLambda;
+        plain.mode = LookupMode::Reflect;
+        // Each asset material once, shared by the parts that use it, under its name in the file.
+        std::vector<MaterialId> ids(asset.materials.size(), kNoMaterial);
+        for (std::size_t k = 0; k < asset.parts.size(); ++k) {
+            const AssetPart& part = asset.parts[k];
+            SceneObject object;
+            object.name = asset.wholeFile ? QFileInfo(r.path).completeBaseName().toStdString() : part.name;
+            object.meshSource = QFileInfo(r.path).absoluteFilePath().toStdString();
+            object.meshPart = asset.wholeFile ? -1 : static_cast<int>(k);
+            object.mesh = part.mesh;
+            object.transform = where;
+            if (part.material < 0) {
+                document_->addObject(std::move(object), plain);
+                continue;
+            }
+            MaterialId& id = ids[static_cast<std::size_t>(part.material)];
+            if (id != kNoMaterial) {
+                object.material = id;
+                document_->addObject(std::move(object));
+            } else {
+                const AssetMaterial& m = asset.materials[static_cast<std::size_t>(part.material)];
+                const int index = document_->addObject(std::move(object), m.name, m.material);
+                id = document_->object(index).material;
+            }
+        }
+        added << tr("%1 (%2 triangles%3)")
                      .arg(QFileInfo(r.path).fileName())
-                     .arg(QLocale().toString(static_cast<qlonglong>(r.mesh->triangleCount())));
+                     .arg(QLocale().toString(static_cast<qlonglong>(triangles(asset))))
+                     .arg(asset.materials.empty()      ? QString()
+                          : asset.materials.size() == 1 ? tr(", 1 material")
+                                                        : tr(", %1 materials").arg(asset.materials.size()));
     }
     if (!names.isEmpty()) stack->endMacro();
+    warnings_ = warnings;
     emit finished(added, errors);
 }
 

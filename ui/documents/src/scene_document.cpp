@@ -82,6 +82,14 @@ int SceneDocument::addObject(SceneObject object, const Material& material) {
     return objectCount() - 1;
 }
 
+int SceneDocument::addObject(SceneObject object, const std::string& materialName, const Material& material) {
+    NamedMaterial own = scene_.newMaterial(materialName, admitted(material));
+    object.material = own.id;
+    const QString text = tr("Add %1").arg(QString::fromStdString(object.name));
+    pushInsert(objectCount(), std::move(object), std::move(own), text);
+    return objectCount() - 1;
+}
+
 int SceneDocument::addObject(SceneObject object) {
     if (scene_.findMaterial(object.material)) {
         const QString text = tr("Add %1").arg(QString::fromStdString(object.name));

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/main_window.h"
 
+#include "mipgloss/scene/asset.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/ui/atomic_file.h"
@@ -73,7 +75,7 @@ DropKind classify(const QString& path) {
     // library: its materials are imported into the user's library (File → Import library).
     if (suffix == QLatin1String("mipgloss") || suffix == QLatin1String("json")) return DropKind::Scene;
     if (suffix == QLatin1String("mglib")) return DropKind::Library;
-    for (const char* ext : meshExtensions())
+    for (const char* ext : importExtensions())
         if (QLatin1String(ext + 1) == suffix) return DropKind::Mesh;  // ext is ".obj"
     if (kEnvironmentSuffixes.contains(suffix)) return DropKind::Environment;
     return DropKind::None;
@@ -892,9 +894,12 @@ void MainWindow::finishImport(const QStringList& added, const QStringList& error
     openingMeshes_ = false;
     if (!added.isEmpty()) viewport_->frameAll();
     if (!errors.isEmpty())
-        showMessageOf(MessageKind::Meshes, errors.join(QLatin1Char('\n')), true);
+        showMessageOf(MessageKind::Meshes, (errors + importer_->warnings()).join(QLatin1Char('\n')), true);
     else if (!added.isEmpty())
-        showMessageOf(MessageKind::Meshes, tr("Imported %1").arg(added.join(QStringLiteral(", "))), false);
+        showMessageOf(MessageKind::Meshes,
+                      (QStringList{tr("Imported %1").arg(added.join(QStringLiteral(", ")))} + importer_->warnings())
+                          .join(QLatin1Char('\n')),
+                      false);
     emit importFinished(static_cast<int>(added.size()));
 }
 
@@ -980,10 +985,10 @@ void MainWindow::openSceneDialog() {
     // Asked before the file dialog, as every other application does.
     if (!maybeSave()) return;
     QStringList meshPatterns;
-    for (const char* ext : meshExtensions()) meshPatterns << QStringLiteral("*%1").arg(QLatin1String(ext));
+    for (const char* ext : importExtensions()) meshPatterns << QStringLiteral("*%1").arg(QLatin1String(ext));
     const QStringList paths = QFileDialog::getOpenFileNames(
         this, tr("Open a scene, or meshes as a new scene"), lastDirectory_,
-        tr("Scenes and meshes (*.mipgloss *.json %1);;mipgloss scenes (*.mipgloss *.json);;Meshes (%1)")
+        tr("Scenes, meshes and assets (*.mipgloss *.json %1);;mipgloss scenes (*.mipgloss *.json);;Meshes and assets (%1)")
             .arg(meshPatterns.join(QLatin1Char(' '))));
     if (paths.isEmpty()) return;
     QStringList meshes;
@@ -1011,10 +1016,10 @@ void MainWindow::openEnvironmentFolderDialog() {
 
 void MainWindow::importMeshDialog() {
     QStringList patterns;
-    for (const char* ext : meshExtensions()) patterns << QStringLiteral("*%1").arg(QLatin1String(ext));
+    for (const char* ext : importExtensions()) patterns << QStringLiteral("*%1").arg(QLatin1String(ext));
     const QStringList paths = QFileDialog::getOpenFileNames(
         this, tr("Import meshes"), lastDirectory_,
-        tr("Meshes (%1);;All files (*)").arg(patterns.join(QLatin1Char(' '))));
+        tr("Meshes and assets (%1);;All files (*)").arg(patterns.join(QLatin1Char(' '))));
     importMeshes(paths);
 }
 

@@ -1,5 +1,7 @@
 #include "mipgloss/ui/material_panel.h"
 
+#include "mipgloss/scene/textures.h"
+
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
@@ -545,6 +547,12 @@ void MaterialPanel::buildLayeredEditor(QWidget* parent) {
     layeredIrradiance_->setToolTip(tr("Light the matte base with the exact irradiance map instead of the "
                                       "chain's widest lobe (they differ slightly; the map costs a build)"));
     form->addRow(QString(), layeredIrradiance_);
+
+    textureMaps_ = new QLabel(layered_);
+    textureMaps_->setObjectName(QStringLiteral("textureMapsLabel"));
+    textureMaps_->setWordWrap(true);
+    textureMaps_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    form->addRow(tr("Textures"), textureMaps_);
 }
 
 void MaterialPanel::connectLayeredEditor() {
@@ -606,6 +614,26 @@ void MaterialPanel::refreshLayers(const Material& m) {
     coat_->setValue(l.coat);
     coatRoughness_->setValue(l.coatRoughness);
     layeredIrradiance_->setChecked(m.useIrradiance);
+    // The parameters a map sets: the value beside them is its factor (the map multiplies it).
+    const MaterialMaps& maps = l.maps;
+    const std::pair<QString, const TextureRef*> textures[] = {
+        {tr("base colour"), &maps.baseColor}, {tr("metallic"), &maps.metallic},   {tr("roughness"), &maps.roughness},
+        {tr("normal"), &maps.normal},         {tr("occlusion"), &maps.occlusion}, {tr("emissive"), &maps.emissive}};
+    QStringList mapped, files;
+    for (const auto& [what, ref] : textures)
+        if (!ref->empty()) {
+            const std::string problem = sharedTextureCache().problem(*ref);
+            mapped << (problem.empty() ? what : tr("%1 (missing)").arg(what));
+            files << QStringLiteral("%1: %2%3").arg(what, QString::fromStdString(ref->key()),
+                                                     problem.empty() ? QString() : QStringLiteral(" — ") + QString::fromStdString(problem));
+        }
+    textureMaps_->setVisible(!mapped.isEmpty());
+    if (auto* form = qobject_cast<QFormLayout*>(layered_->layout()))
+        if (QWidget* label = form->labelForField(textureMaps_)) label->setVisible(!mapped.isEmpty());
+    textureMaps_->setText(mapped.isEmpty() ? QString()
+                                           : tr("%1 (maps × the values above)")
+                                                 .arg(mapped.join(QStringLiteral(", "))));
+    textureMaps_->setToolTip(files.join(QLatin1Char('\n')));
     const QColor color = colorFromLinear(l.baseColor);
     baseColor_->setIcon(swatch(color));
     baseColor_->setToolTip(colourTip(

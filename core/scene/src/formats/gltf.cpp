@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -88,19 +89,64 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
     return false;
 }
 
-// Keeps each image's encoded bytes (decoded later with OpenImageIO, off the UI thread).
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                    const unsigned char* bytes, int size, void*) {
+// Keeps each image's encoded bytes (decoded later with OpenImageIO, off the UI thread). `user` is
+// the model being read: tinygltf (2.7) hands over an image's buffer view without checking it
+// against its buffer, so the view is checked here before a byte of it is read.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+    const auto* model = static_cast<const tinygltf::Model*>(user);
+    if (image->bufferView >= 0) {
+        const auto view = static_cast<std::size_t>(image->bufferView);
+        const tinygltf::BufferView* bv = view < model->bufferViews.size() ? &model->bufferViews[view] : nullptr;
+        const tinygltf::Buffer* buffer = bv && bv->buffer >= 0 && static_cast<std::size_t>(bv->buffer) < model->buffers.size()
+                                             ? &model->buffers[static_cast<std::size_t>(bv->buffer)] : nullptr;
+        if (!buffer || bv->byteOffset > buffer->data.size() || bv->byteLength > buffer->data.size() - bv->byteOffset ||
+            bv->byteLength > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+            if (err)
+                *err += "image " + std::to_string(index) + ": its buffer view " + std::to_string(image->bufferView) +
+                        (bv ? " (" + std::to_string(bv->byteOffset) + " + " + std::to_string(bv->byteLength) +
+                                  " bytes) reaches past the end of its buffer"
+                            : " is not in the file") + "\n";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->as_is = true;
     return true;
 }
 
+std::uint32_t readU32(std::span<const unsigned char> bytes, std::size_t at) {
+    return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
+           static_cast<std::uint32_t>(bytes[at + 2]) << 16 | static_cast<std::uint32_t>(bytes[at + 3]) << 24;
+}
+
+// The GLB container's chunks against its length and the bytes there are, before tinygltf reads
+// it: tinygltf (2.7) lets a BIN chunk end up to its own 8-byte header past the file's end. "" when
+// the container holds together (tinygltf's own checks then say the rest).
+std::string glbContainerProblem(std::span<const unsigned char> bytes) {
+    if (bytes.size() < 20) return "shorter than a GLB header (" + std::to_string(bytes.size()) + " bytes)";
+    const std::uint64_t length = readU32(bytes, 8), jsonLength = readU32(bytes, 12);
+    if (length > bytes.size())
+        return "its header says " + std::to_string(length) + " bytes, but the file has " + std::to_string(bytes.size()) +
+               " (truncated)";
+    const std::uint64_t jsonEnd = 20 + jsonLength;
+    if (jsonEnd > length)
+        return "its JSON chunk (" + std::to_string(jsonLength) + " bytes) reaches past the end of the file's " +
+               std::to_string(length) + " bytes";
+    if (jsonEnd + 8 <= length) {
+        const std::uint64_t binLength = readU32(bytes, static_cast<std::size_t>(jsonEnd));
+        if (jsonEnd + 8 + binLength > length)
+            return "its second chunk (" + std::to_string(binLength) + " bytes from byte " + std::to_string(jsonEnd + 8) +
+                   ") reaches past the end of the file's " + std::to_string(length) + " bytes";
+    }
+    return {};
+}
+
 tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path& file, FileAccess access) {
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, nullptr);
-    loader.SetFsCallbacks(tinygltf::FsCallbacks{fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
     tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
     std::string err, warn;
     const std::string folder = file.parent_path().string();
     if (bytes.size() > 0xffffffffu) throw AssetError(file, "the file is larger than 4 GiB, more than glTF can address");
@@ -108,6 +154,8 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     bool ok = false;
     if (binary) {
+        if (const std::string problem = glbContainerProblem(bytes); !problem.empty())
+            throw AssetError(file, "not a readable GLB file: " + problem);
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
     } else {
         ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length,
@@ -400,18 +448,29 @@ public:
         return m;
     }
 
-    void visit(int index, const glm::dmat4& parent, int depth, std::vector<bool>& onPath) {
+    // Node `index` and its children, `from` the scene or the parent naming it. glTF's nodes form
+    // trees (a node has at most one parent): a node reached again, from a second parent or named
+    // twice, is drawn where it was first reached only, so a file whose nodes each name the next
+    // twice cannot multiply its meshes 2^depth times.
+    void visit(int index, const glm::dmat4& parent, int depth, const std::string& from) {
         if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
-            fail("the scene", "refers to node " + std::to_string(index) + ", but the file has " + std::to_string(model_.nodes.size()));
-        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
-        const std::string at = element("node", static_cast<std::size_t>(index), node.name);
-        if (onPath[static_cast<std::size_t>(index)]) fail(at, "is its own ancestor (a cycle in the node hierarchy)");
+            fail(from, "refers to node " + std::to_string(index) + ", but the file has " + std::to_string(model_.nodes.size()));
+        const auto i = static_cast<std::size_t>(index);
+        const tinygltf::Node& node = model_.nodes[i];
+        const std::string at = element("node", i, node.name);
+        if (onPath_[i]) fail(at, "is its own ancestor (a cycle in the node hierarchy)");
         if (depth > kMaxNodeDepth) fail(at, "lies more than " + std::to_string(kMaxNodeDepth) + " nodes deep");
-        onPath[static_cast<std::size_t>(index)] = true;
+        if (reached_[i] != 0) {
+            if (reached_[i] == 1) warn(at + " has more than one parent (glTF's nodes form trees); drawn only where first reached");
+            reached_[i] = 2;
+            return;
+        }
+        reached_[i] = 1;
+        onPath_[i] = true;
         const glm::dmat4 world = parent * localMatrix(node, at);
         if (node.mesh >= 0) addMesh(node, node.mesh, world, at);
-        for (int child : node.children) visit(child, world, depth + 1, onPath);
-        onPath[static_cast<std::size_t>(index)] = false;
+        for (int child : node.children) visit(child, world, depth + 1, at);
+        onPath_[i] = false;
     }
 
     void addMesh(const tinygltf::Node& node, int meshIndex, const glm::dmat4& world, const std::string& nodeAt) {
@@ -456,6 +515,10 @@ public:
             for (std::size_t i = 0; i < n; ++i) {
                 const glm::dvec4 w = world * glm::dvec4(positions[i][0], positions[i][1], positions[i][2], 1.0);
                 mesh.positions[i] = glm::vec3(w);
+                if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
+                    !std::isfinite(mesh.positions[i].z))
+                    fail(nodeAt, "places vertex " + std::to_string(i) + " of " + at +
+                                     " beyond the range of float coordinates");
             }
             const int normalAccessor = attribute("NORMAL");
             if (normalAccessor >= 0) {
@@ -507,10 +570,11 @@ public:
             if (mesh.normals.empty()) {
                 computeVertexNormals(mesh);
             } else {
-                // A zero normal in the file: the computed one there.
+                // A zero normal in the file: the computed one there. (The vertices are the ones
+                // left after dropDegenerate, fewer than the accessors' n when it dropped any.)
                 Mesh computed = mesh;
                 computeVertexNormals(computed);
-                for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t i = 0; i < mesh.normals.size(); ++i)
                     if (glm::dot(mesh.normals[i], mesh.normals[i]) == 0.0f) mesh.normals[i] = computed.normals[i];
             }
             if (prim.material >= 0 && static_cast<std::size_t>(prim.material) >= model_.materials.size())
@@ -565,11 +629,12 @@ public:
         mesh.indices = std::move(kept);
         std::vector<std::uint32_t> remap(mesh.positions.size(), 0xffffffffu);
         std::uint32_t next = 0;
-        for (std::uint32_t& i : mesh.indices) {
+        for (const std::uint32_t i : mesh.indices)
             if (remap[i] == 0xffffffffu) remap[i] = next++;
-            i = remap[i];
-        }
+        // Every vertex used: the file's numbering stays (renumbering the indices without moving
+        // the vertices with them would scramble the triangles).
         if (next == mesh.positions.size()) return;
+        for (std::uint32_t& i : mesh.indices) i = remap[i];
         auto compact = [&](auto& values) {
             if (values.empty()) return;
             std::remove_reference_t<decltype(values)> out(next);
@@ -590,7 +655,8 @@ public:
         for (const std::string& e : model_.extensionsUsed)
             if (!kSupportedExtensions.count(e)) warn("uses the extension " + e + ", which is not read (drawn without it)");
         readMaterials();
-        std::vector<bool> onPath(model_.nodes.size(), false);
+        onPath_.assign(model_.nodes.size(), false);
+        reached_.assign(model_.nodes.size(), 0);
         std::vector<int> roots;
         if (!model_.scenes.empty()) {
             const int s = model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) < model_.scenes.size()
@@ -605,7 +671,7 @@ public:
             for (std::size_t i = 0; i < model_.nodes.size(); ++i)
                 if (!child[i]) roots.push_back(static_cast<int>(i));
         }
-        for (int root : roots) visit(root, glm::dmat4(1.0), 0, onPath);
+        for (int root : roots) visit(root, glm::dmat4(1.0), 0, "the scene");
         if (asset_.parts.empty()) throw AssetError(file_, "no triangles to draw (no mesh in the scene has any)");
         // Part names unique, as scene objects' are shown.
         std::set<std::string> taken;
@@ -620,6 +686,8 @@ private:
     const tinygltf::Model& model_;
     fs::path file_;
     Asset asset_;
+    std::vector<bool> onPath_;          // the nodes from the root to the one visited
+    std::vector<unsigned char> reached_;  // 0 not yet, 1 reached, 2 reached again (warned)
 };
 
 std::vector<unsigned char> readFileBytes(const fs::path& path) {

@@ -15,10 +15,11 @@
 //
 // OBJ + MTL: v, vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back), usemtl,
 // mtllib, s (smoothing groups: where a face has no vn, its corners share a computed normal only
-// with faces of its own group; "s off" faces are flat). MTL: newmtl, Kd, Ks, Ns, Ke, d, Pr, Pm,
-// map_Kd, map_Pr (and map_Ns, inverted to roughness), map_Pm, map_Ke, map_d, bump/map_Bump/norm
-// (with -bm), each texture path relative to the MTL file. OBJ's v axis points up: it is flipped to
-// glTF's.
+// with faces of its own group; "s off" faces are flat; faces before any s line are one group).
+// MTL: newmtl, Kd, Ns (to roughness), Ke, d/Tr (below 1: blend), Pr (wins over Ns), Pm, map_Kd,
+// map_Pr, map_Pm, map_Ke, bump/map_Bump/norm (with -bm), -imfchan; each texture path relative to
+// the MTL file. Ks, map_Ks, map_Ns and map_d have no place in the metallic–roughness model: Ks is
+// ignored, the maps are warnings. OBJ's v axis points up: it is flipped to glTF's.
 //
 // Hostile files: every count, index and offset is checked against what holds it before it is
 // used; a refusal (AssetError) names the file and the element (mesh, primitive, accessor, buffer
@@ -48,7 +49,7 @@ struct AssetMaterial {
 };
 
 struct AssetPart {
-    std::string name;                  // "node name" or "mesh name", with " 2", " 3" for more primitives
+    std::string name;  // glTF: the node's (or mesh's) name, " 2", " 3" for more primitives; OBJ: the material's
     std::shared_ptr<const Mesh> mesh;
     int material = -1;                 // index into Asset::materials, -1: none (the default material)
 };
@@ -76,6 +77,9 @@ std::vector<int> addAsset(Scene& scene, const Asset& asset, const std::string& s
 // coordinates; otherwise loadAsset reads it as loadMesh does, as one part without a material).
 bool isAssetFile(const std::filesystem::path& path);
 std::span<const char* const> assetExtensions();  // ".gltf", ".glb", ".obj"
+// Everything the window imports and `render --mesh` reads: meshExtensions() and assetExtensions(),
+// each once.
+std::vector<const char*> importExtensions();
 
 // Loads an asset; the format from the extension. Throws AssetError (MeshError for a plain mesh).
 Asset loadAsset(const std::filesystem::path& path);

@@ -83,6 +83,10 @@ Mesh defaultTeapot();
 
 // A UV sphere of radius 1 at the origin with exact normals (tests, the sphere render checks).
 Mesh makeSphere(int rings = 64, int segments = 128);
+// The same sphere with texture coordinates (u = φ/2π around +Y from +X toward +Z, v = θ/π from the
+// top, glTF's v down) and tangents: its seam and poles have a vertex per UV, so a texture wraps
+// once around it (textured thumbnails).
+Mesh makeUvSphere(int rings = 48, int segments = 96);
 
 // Area-weighted vertex normals from the faces; zero-area neighbourhoods get (0, 1, 0).
 void computeVertexNormals(Mesh& mesh);

@@ -1,4 +1,5 @@
-// Imports mesh files into a SceneDocument. Files adding up to more than kBackgroundImportBytes are
+// Imports mesh and asset files (asset.h: glTF, OBJ with MTL; their parts and named materials with
+// texture maps, decoded here too) into a SceneDocument. Files adding up to more than kBackgroundImportBytes are
 // loaded on a worker thread (background_worker.h; the UI never waits on a large file), smaller ones
 // at once; finished() follows either way. Each mesh becomes an object named after the file stem, referring to the
 // file by its absolute path, with a material of its own (named after it) of λ = kImportedLambda
@@ -39,6 +40,9 @@ public:
     void import(const QStringList& paths, Placement placement = Placement::Beside);
     // True while a background import runs.
     bool busy() const { return worker_->busy(); }
+    // The last import's warnings (an asset's texture that is missing or does not decode, parts
+    // left out, ...), each naming its file; set before finished() is emitted.
+    const QStringList& warnings() const { return warnings_; }
 
     // One loaded mesh file (or its error), handed from the loader to the document.
     struct Loaded;
@@ -57,6 +61,7 @@ private:
 
     SceneDocument* document_;
     BackgroundWorker* worker_;
+    QStringList warnings_;
 };
 
 }  // namespace mipgloss::ui

@@ -70,6 +70,8 @@ public:
     // material of its own named after it; the second keeps the material it names, which must be
     // one of the scene's (otherwise the object gets a default material of its own).
     int addObject(SceneObject object, const Material& material);
+    // The same with the new material named `materialName` (an asset's material, named as in its file).
+    int addObject(SceneObject object, const std::string& materialName, const Material& material);
     int addObject(SceneObject object);
     void removeObject(int index);
     int duplicateObject(int index);  // placed beside the original, same mesh and material (shared)

@@ -122,6 +122,8 @@ private:
     QDoubleSpinBox* coat_ = nullptr;
     QDoubleSpinBox* coatRoughness_ = nullptr;
     QCheckBox* layeredIrradiance_ = nullptr;
+    // Which parameters a texture map sets (an imported asset's material): hidden without maps.
+    QLabel* textureMaps_ = nullptr;
     QDoubleSpinBox* translation_[3] = {};
     QDoubleSpinBox* rotation_[3] = {};
     QDoubleSpinBox* scale_ = nullptr;
