@@ -36,6 +36,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -127,8 +128,10 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
-  load time, first frame and frame time of that one mesh (is a big scan interactive?); --million:
-  the same for a generated sphere of a million triangles, written and read as binary PLY.
+  load time, first frame and frame time of that one mesh or asset (is a big scan interactive?), and
+  for an asset the time to decode its textures and the ratio of the time to the first frame to
+  the time to read its files alone; --million: the same for a generated sphere of a million
+  triangles, written and read as binary PLY (a textured one: tests/tools/make_assets --big).
 )";
 
 namespace {
@@ -624,17 +627,41 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 // A big mesh: load time, first frame (with the upload) and steady frame time, with and without
 // multisampling: is it interactive?
+// Every byte of `files`, read as a program that does nothing with them would: the floor under
+// any load time.
+double readMilliseconds(const std::vector<fs::path>& files, std::uintmax_t& bytes) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<char> buffer(1 << 20);
+    bytes = 0;
+    for (const fs::path& f : files) {
+        std::ifstream in(f, std::ios::binary);
+        while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
+            bytes += static_cast<std::uintmax_t>(in.gcount());
+    }
+    return millisecondsSince(start);
+}
+
 int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int frames, int width, int height) {
+    // An asset's files: itself (a .gltf's .bin buffers are read by the load below, not here) and
+    // its external textures; the time to read them is what "on screen" is compared with.
     auto start = std::chrono::steady_clock::now();
-    auto mesh = std::make_shared<const Mesh>(loadMesh(path));
+    const Asset asset = loadAsset(path);
     const double loadMs = millisecondsSince(start);
+    for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
     Scene scene;
-    SceneObject object;
-    object.name = mesh->name;
-    object.mesh = mesh;
     Material material;
     material.lambda = 3.0f;
-    scene.addObject(object, material);
+    addAsset(scene, asset, path.string(), Transform{}, material);
+    std::vector<fs::path> files{path};
+    for (const TextureRef& t : texturesOf(scene))
+        if (t.image < 0) files.push_back(t.file);
+    std::uintmax_t bytes = 0;
+    const double readMs = readMilliseconds(files, bytes);
+    start = std::chrono::steady_clock::now();
+    for (const std::string& w : sharedTextureCache().load(texturesOf(scene))) std::cerr << "mipgloss: warning: " << w << '\n';
+    const double decodeMs = millisecondsSince(start);
+    std::size_t triangles = 0, vertices = 0;
+    for (const SceneObject& o : scene.objects) triangles += o.mesh->triangleCount(), vertices += o.mesh->vertexCount();
     auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
     OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
@@ -642,10 +669,17 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     renderer.render(scene, camera, environment, width, height);
     renderer.finish();
     const double firstMs = millisecondsSince(start);
+    const double onScreenMs = loadMs + decodeMs + firstMs;
     std::cout << "renderer: " << renderer.glDescription() << "\n"
-              << path.string() << ": " << mesh->triangleCount() << " triangles, " << mesh->vertexCount()
-              << " vertices\nload (read, validate, normals): " << loadMs << " ms\n"
-              << "first frame (with upload): " << firstMs << " ms\n";
+              << path.string() << ": " << triangles << " triangles, " << vertices << " vertices, "
+              << scene.objects.size() << " parts, " << sharedTextureCache().images() << " textures ("
+              << sharedTextureCache().bytes() / 1000000 << " MB decoded)\n"
+              << "read the files alone (" << files.size() << " files, " << bytes / 1000000 << " MB): " << readMs << " ms\n"
+              << "load (parse, validate, normals, tangents): " << loadMs << " ms\n"
+              << "decode textures (OpenImageIO, in parallel): " << decodeMs << " ms\n"
+              << "first frame (with uploads and mipmaps): " << firstMs << " ms\n"
+              << "on screen in " << onScreenMs << " ms = " << onScreenMs / std::max(readMs, 1e-3)
+              << " x the time to read its files\n";
     for (const int samples : {4, 0}) {
         scene.display.samples = samples;
         renderer.render(scene, camera, environment, width, height);
@@ -658,6 +692,8 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
         std::cout << "frame, " << (samples ? "4x MSAA" : "no MSAA") << ", " << width << "x" << height
                   << ": " << millisecondsSince(start) / frames << " ms\n";
     }
+    std::cout << "texture uploads: " << renderer.counters().textureUploads << ", mesh uploads: "
+              << renderer.counters().meshUploads << '\n';
     return 0;
 }
 

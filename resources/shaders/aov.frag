@@ -26,7 +26,9 @@ uniform bool uDiffuseIrradiance;
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#ifdef MATERIAL_MAPS
 #include "material_maps.glsl"
+#endif
 #include "cube_lod.glsl"
 #include "lobe_stack.glsl"
 
@@ -71,7 +73,8 @@ void main() {
     aovSpecularWeight = vec4(0.0);
     aovCoatDirection = vec4(0.0);
     aovCoatWeight = vec4(0.0);
-    if (uLayered && uHasMaps) {
+#ifdef MATERIAL_MAPS
+    {
         // object.frag's mapped branch: the mapped normal's directions, each fragment's own
         // specular lobe from the roughness map, the weights from the mapped base colour and
         // metallic, times the occlusion. Emission is not a lobe: an emitting pixel is not exact.
@@ -104,8 +107,8 @@ void main() {
             aovCoatDirection = vec4(mr, coatShown);
             aovCoatWeight = vec4(s.occlusion * wCoat, 0.0);
         }
-        return;
     }
+#else
     if (uLayered) {
         vec3 wDiffuse, wSpecular, wCoat;
         layerWeights(cosView, wDiffuse, wSpecular, wCoat);
@@ -152,4 +155,5 @@ void main() {
     }
     aovDirection = vec4(direction, exponent);
     aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
+#endif
 }

@@ -1,10 +1,9 @@
 // A layered material's texture maps (core/scene/scene.h, MaterialMaps; docs/assets.md), read at
-// the fragment's UV. Included by object.frag and aov.frag after layered.glsl. Without maps
-// (uHasMaps false) nothing here is read and the material is its uniforms alone, as before.
+// the fragment's UV. Included by object.frag and aov.frag, after layered.glsl, when they are built
+// with MATERIAL_MAPS: the programs that draw the materials with maps (MaterialMaps::inUse).
 in vec2 vUv;
 in vec4 vTangent;  // world xyz, w: the bitangent's sign
 
-uniform bool uHasMaps;
 uniform sampler2D uBaseColorMap;  // unit 8: sRGB, so reads are linear
 uniform sampler2D uMetallicMap;   // unit 9
 uniform sampler2D uRoughnessMap;  // unit 10

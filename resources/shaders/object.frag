@@ -31,7 +31,9 @@ uniform bool uDiffuseIrradiance;    // the base from the irradiance map (unit 1)
 uniform float uCoatExponent;
 
 #include "layered.glsl"
+#ifdef MATERIAL_MAPS
 #include "material_maps.glsl"
+#endif
 #include "cube_lod.glsl"
 #include "lobe_stack.glsl"
 
@@ -47,6 +49,7 @@ vec3 readLobe(samplerCube chain, bool useStack, float n, vec3 d, vec3 dx, vec3 d
     return textureGrad(chain, d, dx, dy).rgb;
 }
 
+#ifdef MATERIAL_MAPS
 // Lobe n chosen per fragment (a roughness map): the stack's exact lobe where it holds it, else the
 // chain at n's own level, never sharper than the footprint's (the grazing option's rule below).
 vec3 readLobePerFragment(float n, vec3 d, vec3 dx, vec3 dy) {
@@ -58,6 +61,7 @@ vec3 readLobePerFragment(float n, vec3 d, vec3 dx, vec3 dy) {
     float footprint = cubeLevelOfDetail(d, float(textureSize(uEnvironment, 0).x));
     return textureLod(uEnvironment, d, max(level, footprint)).rgb;
 }
+#endif
 
 layout(location = 0) out vec4 fragColour;
 
@@ -66,11 +70,12 @@ void main() {
     vec3 v = normalize(uCameraPosition - vWorldPosition);
     // Open meshes (the teapot's lid gap) show their inside: light it with the inward normal.
     if (!gl_FrontFacing) n = -n;
-    // Both lookup directions and their footprints, in uniform control flow.
-    vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
-    vec3 normal = normalize(uEnvironmentRotation * n);
-    vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
-    if (uLayered && uHasMaps) {
+#ifdef MATERIAL_MAPS
+    // A layered material with texture maps: this program (object.frag built with MATERIAL_MAPS)
+    // draws only those. A program of its own, because a shader runs every branch it holds for
+    // each fragment on a CPU rasterizer (llvmpipe: masked SIMD) and the maps' reads made every
+    // other object six times slower there.
+    {
         // Texture maps (material_maps.glsl): the mapped normal gives both lookup directions, the
         // mapped roughness each fragment's own specular lobe, base colour and metallic its weights.
         MaterialSample s = sampleMaterial(n);
@@ -85,13 +90,21 @@ void main() {
                        uUseRoughnessMap ? exponentLambda(exponent) : uSpecularLambda, wDiffuse, wSpecular, wCoat);
         vec3 diffuse = uDiffuseIrradiance ? texture(uIrradiance, mnormal).rgb
                                           : readLobe(uDiffuseChain, uUseDiffuseStack, 1.0, mnormal, mndx, mndy);
-        vec3 specular = uUseRoughnessMap ? readLobePerFragment(exponent, mr, mrdx, mrdy)
-                                         : readLobe(uEnvironment, uUseStack, uExponent, mr, mrdx, mrdy);
+        // Branches, not ?: (a select evaluates both sides, and the per-fragment read is the dearer).
+        vec3 specular;
+        if (uUseRoughnessMap)
+            specular = readLobePerFragment(exponent, mr, mrdx, mrdy);
+        else
+            specular = readLobe(uEnvironment, uUseStack, uExponent, mr, mrdx, mrdy);
         vec3 coat = uCoat > 0.0 ? readLobe(uCoatChain, uUseCoatStack, uCoatExponent, mr, mrdx, mrdy) : vec3(0.0);
         if (s.cut) discard;
         fragColour = vec4(s.occlusion * (wDiffuse * diffuse + wSpecular * specular + wCoat * coat) + s.emissive, 1.0);
-        return;
     }
+#else
+    // Both lookup directions and their footprints, in uniform control flow.
+    vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
+    vec3 normal = normalize(uEnvironmentRotation * n);
+    vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
     if (uLayered) {
         vec3 wDiffuse, wSpecular, wCoat;
         layerWeights(clamp(dot(n, v), 0.0, 1.0), wDiffuse, wSpecular, wCoat);
@@ -130,4 +143,5 @@ void main() {
         colour = readLobe(uEnvironment, uUseStack, uExponent, direction, ddx, ddy);
     }
     fragColour = vec4(uTint * colour, 1.0);
+#endif
 }

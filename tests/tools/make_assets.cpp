@@ -7,12 +7,16 @@
 //                        bevelled tile edges) and a missing occlusion image (a warning, drawn
 //                        without it)
 //   crate.obj, crate.mtl a cube with UVs, map_Kd a checker, map_Pr a roughness stripe image
+// With --big: big.glb, the benchmark asset: a UV sphere of 1,000,000 triangles with four
+// 4096² textures (base colour, metallic–roughness, normal, occlusion) as external PNGs of noise
+// (incompressible, as photographed textures are), for `mipgloss bench-render --mesh big.glb`.
 #include "gltf_writer.h"
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <string>
 
 namespace fs = std::filesystem;
 using namespace mipgloss;
@@ -100,20 +104,47 @@ void crate(const fs::path& dir) {
     }
 }
 
+void big(const fs::path& dir) {
+    const int n = 4096;
+    std::uint32_t state = 12345u;
+    auto noise = [&]() { state = state * 1664525u + 1013904223u; return static_cast<std::uint8_t>(state >> 24); };
+    const char* names[4] = {"big_color.png", "big_mr.png", "big_normal.png", "big_occlusion.png"};
+    for (int k = 0; k < 4; ++k)
+        writePng(makeImage(n, n, 3, [&](int, int) -> std::vector<std::uint8_t> {
+                     const std::uint8_t a = noise();
+                     if (k == 2) return {static_cast<std::uint8_t>(112 + a / 8), static_cast<std::uint8_t>(112 + a / 8), 250};
+                     return {a, noise(), noise()};
+                 }),
+                 dir / names[k]);
+    GltfWriter w;
+    int t[4];
+    for (int k = 0; k < 4; ++k) t[k] = w.addTexture(w.addImage({}, names[k]));
+    tinygltf::Material m = pbrMaterial("Big", {1, 1, 1, 1}, 1.0, 1.0, t[0], t[1], t[2]);
+    m.occlusionTexture.index = t[3];
+    // rings × segments quads less the poles' degenerate halves: 2·500·1000 − 2·1000 ≈ 1.0e6.
+    Mesh sphere = texturedSphere(501, 1000);
+    computeTangents(sphere);
+    w.addToScene(w.addNode(w.addMesh(sphere, w.addMaterial(m))));
+    w.writeGlb(dir / "big.glb");
+    std::cout << "big.glb: " << sphere.triangleCount() << " triangles, 4 textures of " << n << "²\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: mipgloss_make_assets OUTDIR\n";
+    const bool withBig = argc == 3 && std::string(argv[1]) == "--big";
+    if (argc != 2 && !withBig) {
+        std::cerr << "usage: mipgloss_make_assets [--big] OUTDIR\n";
         return 2;
     }
     try {
-        const fs::path dir = argv[1];
+        const fs::path dir = argv[argc - 1];
         fs::create_directories(dir);
         checkerSphere(dir);
         tiles(dir);
         crate(dir);
         std::cout << "wrote checker_sphere.glb, tiles.gltf, crate.obj to " << dir.string() << '\n';
+        if (withBig) big(dir);
     } catch (const std::exception& e) {
         std::cerr << "mipgloss_make_assets: " << e.what() << '\n';
         return 1;

@@ -105,6 +105,11 @@ bool parseAlphaMode(const std::string& text, AlphaMode& out) {
 
 bool MaterialMaps::anyTexture() const { return !textures().empty(); }
 
+bool MaterialMaps::inUse() const {
+    return anyTexture() || emissiveFactor.r > 0.0f || emissiveFactor.g > 0.0f || emissiveFactor.b > 0.0f ||
+           alphaMode == AlphaMode::Mask;
+}
+
 std::vector<TextureRef> MaterialMaps::textures() const {
     std::vector<TextureRef> out;
     for (const TextureRef* t : {&baseColor, &metallic, &roughness, &normal, &occlusion, &emissive})

@@ -52,6 +52,9 @@ int levelKey(float level) { return static_cast<int>(std::lround(level * 1024.0f)
 struct Renderer::Impl {
     QOpenGLFunctions_4_1_Core* gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram, outlineProgram;
+    // object.frag and aov.frag built with MATERIAL_MAPS: the layered materials with texture maps
+    // (MaterialMaps::inUse), drawn after the others (material_maps.glsl says why apart).
+    std::unique_ptr<QOpenGLShaderProgram> objectMapsProgram, aovMapsProgram;
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
@@ -272,8 +275,7 @@ struct Renderer::Impl {
     // Where a program takes a material's maps (material_maps.glsl), resolved once per drawObjects call.
     struct MapUniforms {
         explicit MapUniforms(QOpenGLShaderProgram& p)
-            : hasMaps(p.uniformLocation("uHasMaps")),
-              metallicChannel(p.uniformLocation("uMetallicChannel")),
+            : metallicChannel(p.uniformLocation("uMetallicChannel")),
               roughnessChannel(p.uniformLocation("uRoughnessChannel")),
               baseColor(p.uniformLocation("uBaseColor")),
               baseAlpha(p.uniformLocation("uBaseAlpha")),
@@ -294,7 +296,7 @@ struct Renderer::Impl {
                 samplers[i] = p.uniformLocation(sampler[i]);
             }
         }
-        int hasMaps, metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
+        int metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
             normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff;
         int uses[kMapCount], samplers[kMapCount];
     };
@@ -303,11 +305,7 @@ struct Renderer::Impl {
     // the factors. Returns whether the roughness map is read (each fragment its own lobe).
     bool bindMaps(const MapUniforms& u, const Layers& l) {
         const MaterialMaps& m = l.maps;
-        // Emission and alpha cut apply without any texture too.
-        const bool any = m.anyTexture() || m.emissiveFactor.r > 0.0f || m.emissiveFactor.g > 0.0f ||
-                         m.emissiveFactor.b > 0.0f || m.alphaMode == AlphaMode::Mask;
-        gl->glUniform1i(u.hasMaps, any ? 1 : 0);
-        if (!any) return false;
+        if (!m.inUse()) return false;
         if (whiteTexture == 0) {
             const std::uint8_t white[4] = {255, 255, 255, 255};
             gl->glGenTextures(1, &whiteTexture);
@@ -393,7 +391,7 @@ struct Renderer::Impl {
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
     void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
                      const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum,
-                     bool aov) {
+                     bool aov, bool mapped) {
         program.bind();
         gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
                                glm::value_ptr(viewProjection));
@@ -420,6 +418,7 @@ struct Renderer::Impl {
 
         for (const SceneObject& object : scene.objects) {
             if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
+            if (drawsMaps(scene.materialOf(object)) != mapped) continue;  // the other program's
             if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
                 if (!aov) ++counters.objectsCulled;
                 continue;
@@ -459,6 +458,18 @@ struct Renderer::Impl {
             if (read.settled) ++counters.objectsSettled;
             else if (read.fromChain) ++counters.objectsFromChain;
         }
+    }
+
+    static bool drawsMaps(const Material& m) { return m.layered && m.layers.maps.inUse(); }
+
+    // The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
+    void drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection,
+                        const glm::mat3& envRotation, const Frustum& frustum) {
+        drawObjects(aov ? *aovProgram : *objectProgram, scene, eye, viewProjection, envRotation, frustum, aov, false);
+        if (std::any_of(scene.objects.begin(), scene.objects.end(),
+                        [&](const SceneObject& o) { return o.visible && o.mesh && drawsMaps(scene.materialOf(o)); }))
+            drawObjects(aov ? *aovMapsProgram : *objectMapsProgram, scene, eye, viewProjection, envRotation, frustum,
+                        aov, true);
     }
 
     // Sends `levels` as the texture's levels firstLevel, firstLevel + 1, … (those below stay) and
@@ -677,7 +688,7 @@ bool Renderer::hasEnvironment() const { return impl_->environmentTexture != 0 &&
 namespace {
 // A shader's source with the C++ enums' GLSL names (lookup_plan.h, shaderDefines) after its
 // #version line; empty when the resource is missing.
-QByteArray shaderSource(const char* path) {
+QByteArray shaderSource(const char* path, const char* extraDefines = "") {
     QFile file(QString::fromUtf8(path));
     if (!file.open(QIODevice::ReadOnly)) return {};
     QByteArray source = file.readAll();
@@ -694,15 +705,15 @@ QByteArray shaderSource(const char* path) {
     }
     const qsizetype versionEnd = source.indexOf('\n') + 1;
     // #line keeps the compiler's line numbers those of the file.
-    source.insert(versionEnd, QByteArray::fromStdString(shaderDefines() + "#line 2\n"));
+    source.insert(versionEnd, QByteArray::fromStdString(shaderDefines() + extraDefines + "#line 2\n"));
     return source;
 }
 
 std::unique_ptr<QOpenGLShaderProgram> buildProgram(const char* vertexPath, const char* fragmentPath,
-                                                   std::string* error) {
+                                                   std::string* error, const char* extraDefines = "") {
     auto program = std::make_unique<QOpenGLShaderProgram>();
-    if (!program->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, shaderSource(vertexPath)) ||
-        !program->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, shaderSource(fragmentPath)) ||
+    if (!program->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, shaderSource(vertexPath, extraDefines)) ||
+        !program->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, shaderSource(fragmentPath, extraDefines)) ||
         !program->link()) {
         if (error)
             *error = std::string("shader ") + fragmentPath + ": " + program->log().toStdString();
@@ -737,8 +748,12 @@ bool Renderer::initialize(std::string* error) {
     impl_->toneProgram = buildProgram(":/mipgloss/shaders/fullscreen.vert", ":/mipgloss/shaders/tonemap.frag", error);
     impl_->aovProgram = buildProgram(":/mipgloss/shaders/object.vert", ":/mipgloss/shaders/aov.frag", error);
     impl_->outlineProgram = buildProgram(":/mipgloss/shaders/outline.vert", ":/mipgloss/shaders/outline.frag", error);
+    impl_->objectMapsProgram = buildProgram(":/mipgloss/shaders/object.vert", ":/mipgloss/shaders/object.frag", error,
+                                            "#define MATERIAL_MAPS\n");
+    impl_->aovMapsProgram = buildProgram(":/mipgloss/shaders/object.vert", ":/mipgloss/shaders/aov.frag", error,
+                                         "#define MATERIAL_MAPS\n");
     if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram ||
-        !impl_->outlineProgram) {
+        !impl_->outlineProgram || !impl_->objectMapsProgram || !impl_->aovMapsProgram) {
         impl_->gl = nullptr;
         return false;
     }
@@ -749,7 +764,8 @@ bool Renderer::initialize(std::string* error) {
     gl->glGenTextures(1, &impl_->environmentTexture);
     gl->glGenTextures(1, &impl_->mirrorTexture);
     gl->glGenTextures(1, &impl_->irradianceTexture);
-    for (QOpenGLShaderProgram* program : {impl_->objectProgram.get(), impl_->aovProgram.get()}) {
+    for (QOpenGLShaderProgram* program : {impl_->objectProgram.get(), impl_->aovProgram.get(),
+                                          impl_->objectMapsProgram.get(), impl_->aovMapsProgram.get()}) {
         program->bind();
         program->setUniformValue("uEnvironment", 0);
         program->setUniformValue("uIrradiance", 1);
@@ -803,6 +819,8 @@ void Renderer::destroy() {
     d.backgroundProgram.reset();
     d.toneProgram.reset();
     d.aovProgram.reset();
+    d.objectMapsProgram.reset();
+    d.aovMapsProgram.reset();
     d.outlineProgram.reset();
     d.environment.reset();
     d.gl = nullptr;
@@ -901,7 +919,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         gl->glActiveTexture(GL_TEXTURE0);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
 
-        d.drawObjects(*d.objectProgram, scene, camera.position(), viewProjection, envRotation, frustum, false);
+        d.drawAllObjects(false, scene, camera.position(), viewProjection, envRotation, frustum);
 
         if (scene.display.showBackground) {
             // Drawn last at the far plane, so covered pixels are never shaded.
@@ -1073,9 +1091,9 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     gl->glBindSampler(1, 0);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
-    d.drawObjects(*d.aovProgram, scene, camera.position(), viewProjection,
-                  environmentRotation(scene.display.environmentRotationDegrees),
-                  Frustum::fromViewProjection(viewProjection), true);
+    d.drawAllObjects(true, scene, camera.position(), viewProjection,
+                     environmentRotation(scene.display.environmentRotationDegrees),
+                     Frustum::fromViewProjection(viewProjection));
     gl->glBindSampler(0, 0);
 
     const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

@@ -77,6 +77,9 @@ struct MaterialMaps {
     float alphaCutoff = 0.5f;
 
     bool anyTexture() const;
+    // Whether drawing needs the maps at all: a texture, emission, or an alpha cut (the renderer
+    // draws such materials with a program of their own).
+    bool inUse() const;
     // Every texture the maps read, in the order of the fields (empty ones left out).
     std::vector<TextureRef> textures() const;
     bool operator==(const MaterialMaps&) const = default;
