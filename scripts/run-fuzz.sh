@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-25}
 shift || true
-all=(environment_import mesh_import scene_file library_file)
+all=(environment_import mesh_import gltf_import mtl_import scene_file library_file)
 targets=("${@:-${all[@]}}")
 
 scripts/install-clang.sh
@@ -28,8 +28,10 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_stack_use_after_retu
 export LSAN_OPTIONS="suppressions=$sup/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$sup/ubsan.supp"
 
-declare -A max_len=([environment_import]=65536 [mesh_import]=16384 [scene_file]=8192 [library_file]=8192)
-declare -A dict=([mesh_import]=mesh.dict [scene_file]=json.dict [library_file]=json.dict)
+declare -A max_len=([environment_import]=65536 [mesh_import]=16384 [gltf_import]=16384 [mtl_import]=8192
+                     [scene_file]=8192 [library_file]=8192)
+declare -A dict=([mesh_import]=mesh.dict [gltf_import]=gltf.dict [mtl_import]=mtl.dict [scene_file]=json.dict
+                  [library_file]=json.dict)
 failed=()
 for t in "${targets[@]}"; do
   exe=build/asan/tests/fuzz/fuzz_$t

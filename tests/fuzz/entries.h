@@ -28,8 +28,20 @@ std::string environmentImport(Bytes data);
 std::string meshImport(Bytes data);
 std::string sceneFile(Bytes data);     // the whole input is the JSON text
 std::string libraryFile(Bytes data);   // the whole input is the JSON text
+// Assets (asset.h): refused with an AssetError naming the file, or parts whose meshes are valid and
+// non-empty, each part's material in range, every material valid (isValidMaterial) with every
+// texture channel in 0..3, and every warning naming the file.
+// gltf_import: the whole input is a .glb or .gltf file's bytes (loadGltfFromMemory, "fuzz.glb";
+// from memory nothing external is ever read).
+std::string gltfImport(Bytes data);
+// mtl_import: the first byte is the selector (bit 0 set: the OBJ is read without its library);
+// the rest is split at its first 0 byte into OBJ text and MTL text (none when there is no 0).
+// The OBJ is read as "fuzz.obj" with the MTL as its library "fuzz.mtl" (loadObjAssetFromMemory;
+// an AssetError may name either file), and the MTL alone through parseMtl.
+std::string mtlImport(Bytes data);
 
-// Entry by target name ("environment_import", "mesh_import", "scene_file", "library_file");
+// Entry by target name ("environment_import", "mesh_import", "gltf_import", "mtl_import",
+// "scene_file", "library_file");
 // nullptr for an unknown name or one not built (the scene and library entries need Qt).
 using Entry = std::string (*)(Bytes);
 Entry entryNamed(std::string_view target);

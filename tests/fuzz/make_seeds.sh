@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the small seed files in tests/fuzz/corpus/ (committed; run again only to change
-# them). Needs oiiotool (openimageio-tools), python3 and g++ with OpenMesh (for the .om seed).
+# them). Needs oiiotool (openimageio-tools), python3 and g++ with OpenMesh (for the .om seed) and
+# tinygltf with OpenImageIO (the glTF seeds, written by tests/tools/gltf_writer.cpp).
 # Each environment and mesh seed starts with the selector byte of entries.h: byte % 5 picks the
 # extension (environment .exr .hdr .png .jpg .tif; mesh .obj .off .ply .stl .om).
 set -euo pipefail
@@ -85,6 +86,135 @@ g++ -std=c++17 -o "$tmp/om" "$tmp/om.cpp" -lOpenMeshCore && "$tmp/om" "$tmp/tetr
 for f in ply-ascii_0011 ply-binary-le_0009 ply-binary-be_0012; do
   [ -f ../assets/meshes/hostile/$f.ply ] && { selector 2; cat ../assets/meshes/hostile/$f.ply; } > "$mesh/hostile-$f.ply"
 done
+
+# --- assets: glTF (GLB and .gltf) written by the tests' GltfWriter, OBJ + MTL pairs ----------
+# gltf_import: the whole input is the file. Needs libtinygltf-dev and OpenImageIO (the PNGs).
+gl=corpus/gltf_import mtl=corpus/mtl_import
+mkdir -p "$gl" "$mtl"
+cat > "$tmp/gltf_seeds.cpp" <<'CPP'
+#include "gltf_writer.h"
+#include <fstream>
+namespace mipgloss {
+// The one mesh.cpp function gltf_writer.cpp calls, so this links without the scene library.
+void computeBounds(Mesh& mesh) {
+    if (mesh.positions.empty()) return;
+    mesh.bounds = {mesh.positions[0], mesh.positions[0]};
+    for (const glm::vec3& p : mesh.positions) mesh.bounds.min = glm::min(mesh.bounds.min, p), mesh.bounds.max = glm::max(mesh.bounds.max, p);
+}
+}  // namespace mipgloss
+using namespace mipgloss;
+using namespace mipgloss::test;
+namespace fs = std::filesystem;
+static void save(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+int main(int, char** argv) {
+    const fs::path out = argv[1];
+    const TestImage tiny = makeImage(2, 2, 3, [](int x, int y) -> std::vector<std::uint8_t> {
+        return {static_cast<std::uint8_t>(255 * x), static_cast<std::uint8_t>(255 * y), 128};
+    });
+    Mesh tri;  // one triangle with UVs and tangents
+    tri.name = "tri";
+    tri.positions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    tri.normals.assign(3, glm::vec3(0.57735f));
+    tri.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    tri.tangents.assign(3, glm::vec4(0.70710678f, -0.70710678f, 0, 1));
+    tri.indices = {0, 1, 2};
+    computeBounds(tri);
+    {   // GLB: the quad with an embedded PNG read by every map, emissive strength and clear coat.
+        GltfWriter w;
+        const int t = w.addTexture(w.addImage(encodePng(tiny)));
+        tinygltf::Material m = pbrMaterial("Paint", {0.8, 0.5, 0.2, 1}, 0.5, 0.4, t, t, t);
+        m.occlusionTexture.index = t;
+        m.emissiveTexture.index = t;
+        m.emissiveFactor = {1, 0.5, 0.25};
+        m.alphaMode = "MASK";
+        m.alphaCutoff = 0.25;
+        m.extensions["KHR_materials_emissive_strength"] =
+            tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(2.0)}});
+        m.extensions["KHR_materials_clearcoat"] = tinygltf::Value(tinygltf::Value::Object{
+            {"clearcoatFactor", tinygltf::Value(1.0)}, {"clearcoatRoughnessFactor", tinygltf::Value(0.1)}});
+        w.model().extensionsUsed = {"KHR_materials_emissive_strength", "KHR_materials_clearcoat"};
+        w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(m)), {0, 1, 0}, {1, 2, 1}));
+        w.writeGlb(out / "quad-textured.glb");
+    }
+    {   // GLB: a triangle with tangents under a mirroring parent; a second primitive of lines.
+        GltfWriter w;
+        const int t = w.addTexture(w.addImage(encodePng(tiny)));
+        const int mesh = w.addMesh(tri, w.addMaterial(pbrMaterial("", {1, 1, 1, 1}, 0, 1, -1, -1, t)));
+        tinygltf::Primitive lines = w.model().meshes[0].primitives[0];
+        lines.mode = TINYGLTF_MODE_LINE;
+        w.model().meshes[0].primitives.push_back(lines);
+        const int child = w.addNode(mesh, {1, 2, 3}, {}, {0, 0.38268343, 0, 0.92387953});
+        const int parent = w.addNode(-1, {}, {-1, 1, 1});
+        w.model().nodes[static_cast<std::size_t>(parent)].children = {child};
+        w.addToScene(parent);
+        w.writeGlb(out / "mirrored-tangents.glb");
+    }
+    {   // .gltf: the buffer as a data URI, a strip without normals, an external image, blend.
+        GltfWriter w;
+        const int t = w.addTexture(w.addImage({}, "base%20colour.png"));
+        tinygltf::Material m = pbrMaterial("Glass", {1, 1, 1, 0.5}, 0, 0.05, t);
+        m.alphaMode = "BLEND";
+        Mesh strip;
+        strip.name = "strip";
+        strip.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}};
+        strip.uvs = {{0, 0}, {1, 0}, {0, 0.5f}, {1, 0.5f}, {0, 1}};
+        strip.indices = {0, 1, 2, 3, 4};
+        const int mesh = w.addMesh(strip, w.addMaterial(m), false);
+        w.model().meshes[0].primitives[0].mode = TINYGLTF_MODE_TRIANGLE_STRIP;
+        w.addToScene(w.addNode(mesh));
+        save(out / "strip-data-uri.gltf", w.gltf());
+    }
+    {   // .gltf: a fan, positions only, no scene (its root nodes are drawn), a matrix node.
+        GltfWriter w;
+        Mesh fan;
+        fan.name = "fan";
+        fan.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}};
+        fan.indices = {0, 1, 2, 3, 4};
+        const int mesh = w.addMesh(fan, -1, false);
+        w.model().meshes[0].primitives[0].mode = TINYGLTF_MODE_TRIANGLE_FAN;
+        const int node = w.addNode(mesh);
+        w.model().nodes[static_cast<std::size_t>(node)].matrix = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+        w.model().scenes.clear();
+        w.model().defaultScene = -1;
+        save(out / "fan-no-scene.gltf", w.gltf());
+    }
+}
+CPP
+g++ -std=c++20 -O1 -I ../tools -I ../../core/scene/include -I ../../core/io/include "$tmp/gltf_seeds.cpp" ../tools/gltf_writer.cpp \
+    -o "$tmp/gltf_seeds" -ltinygltf -lOpenImageIO -lOpenImageIO_Util
+"$tmp/gltf_seeds" "$gl"
+# The writer pretty-prints .gltf JSON: compacted, the fuzzer's mutations land on content.
+for f in "$gl"/*.gltf; do
+  python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); open(sys.argv[1],"w").write(json.dumps(d,separators=(",",":")))' "$f"
+done
+
+# mtl_import: a selector byte (bit 0 set: the OBJ read without its library), the OBJ text, a 0
+# byte, the MTL text (entries.h). The OBJ names its library "fuzz.mtl", as the entry gives it.
+python3 - "$mtl" <<'PY'
+import os, sys
+out = sys.argv[1]
+def seed(name, obj, mtl=None, selector=0):
+    data = bytes([selector]) + obj.encode() + (b"\0" + mtl.encode() if mtl is not None else b"")
+    open(os.path.join(out, name), "wb").write(data)
+cube_v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+cube_n = "vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 0 1 0\nvn -1 0 0\nvn 1 0 0\n"
+faces = [(1,4,3,2),(5,6,7,8),(1,2,6,5),(4,8,7,3),(1,5,8,4),(2,3,7,6)]
+def f(i, q, n=True):
+    return "f " + " ".join(f"{v}/{k+1}" + (f"/{i+1}" if n else "") for k, v in enumerate(q)) + "\n"
+obj = "# two materials\nmtllib fuzz.mtl\n" + cube_v + cube_n + "usemtl Red\ns off\n" + "".join(f(i, q) for i, q in enumerate(faces[:3])) \
+      + "usemtl Blue\ns 1\n" + "".join(f(i, q, False) for i, q in enumerate(faces[3:], 3)) + "usemtl Nowhere\nf 1 2 3\n"
+mtl = ("# every key the reader knows\nnewmtl Red\nKd 1 0 0\nKs 1 1 1\nNs 250\nKe 0.5\nd 1\nPm 0.25\nmap_Kd -blendu on -o 0.5 0.5 red tex.png\n"
+       "map_Ns shine.png\nmap_Ks spec.png\nmap_d alpha.png\n"
+       "newmtl Blue\nKd 0 0 1\nPr 0.3\nTr 0.5\nmap_Pr -imfchan g rough.png\nmap_Pm -imfchan b -mm 0 1 metal.png\n"
+       "map_Ke glow.png\nnorm -bm 2 -s 1 1 1 n.png\nbump -bm -0.5 b.png\nmap_Bump -clamp on c:\\textures\\nb.png\n"
+       "newmtl Red\nd -halo 0.5\n")
+seed("cube-two-materials.bin", obj, mtl)
+seed("cube-without-library.bin", obj, mtl, selector=1)
+seed("quad-negative-indices.bin", "mtllib fuzz.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
+     "usemtl M\nf -4/-2/-1 -3/-1/-1 -2/-1/-1 -1/-2/-1\n", "newmtl M\nKd 0.5 0.5 0.5\nbump n.png\n")
+seed("obj-only.bin", "mtllib fuzz.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+seed("bad-mtl-value.bin", "mtllib fuzz.mtl\nusemtl A\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "newmtl A\nKd 1 nan 0\n")
+PY
 
 # --- scene and library files ----------------------------------------------------------------
 sc=corpus/scene_file

@@ -54,9 +54,10 @@ TEST_P(FuzzInputs, EveryCommittedInputIsRefusedByNameOrLoadsValid) {
 }
 
 #ifdef MIPGLOSS_FUZZ_HAVE_UI
-const auto kTargets = ::testing::Values("environment_import", "mesh_import", "scene_file", "library_file");
+const auto kTargets = ::testing::Values("environment_import", "mesh_import", "gltf_import", "mtl_import", "scene_file",
+                                      "library_file");
 #else
-const auto kTargets = ::testing::Values("environment_import", "mesh_import");
+const auto kTargets = ::testing::Values("environment_import", "mesh_import", "gltf_import", "mtl_import");
 #endif
 
 std::string targetName(const ::testing::TestParamInfo<const char*>& target) { return target.param; }

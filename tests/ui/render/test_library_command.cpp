@@ -256,7 +256,7 @@ TEST(LibraryCommand, CorruptLibraryIsRefusedByEveryCommandAndKept) {
     };
     const std::vector<Corrupt> corrupt{
         {"truncated.json", valid.left(valid.size() * 2 / 3), "not valid JSON"},
-        {"newer.json", QByteArray(valid).replace("\"version\": 2", "\"version\": 3"), "version 3 is newer"},
+        {"newer.json", QByteArray(valid).replace("\"version\": 3", "\"version\": 4"), "version 4 is newer"},
         {"absurd.json", QByteArray(valid).replace("\"lambda\": 6", "\"lambda\": 60"), "\"materials[3].lambda\" is 60"},
         {"scene.json", R"({"format": "mipgloss-scene", "version": 3, "objects": []})", "not a material library"},
     };

@@ -42,6 +42,12 @@ const std::set<std::string> kSupportedExtensions = {
 
 // The most nodes deep a hierarchy may be (a cycle or a corrupt file beyond it).
 constexpr int kMaxNodeDepth = 256;
+// The most vertices and triangles all parts together may hold. Nodes may share a mesh, each
+// placement a copy here (asset.h), so a file of a few kilobytes could otherwise ask for billions
+// (400 nodes × 120 primitives of one shared mesh: 21.6 million triangles from 17 KB). 2^25 of each
+// is ~1.6 GB of mesh, more than any asset an artist previews.
+constexpr std::size_t kMaxAssetVertices = std::size_t(1) << 25;
+constexpr std::size_t kMaxAssetTriangles = std::size_t(1) << 25;
 
 bool isImageFile(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
@@ -502,6 +508,19 @@ public:
             };
             const int positionAccessor = attribute("POSITION");
             if (positionAccessor < 0) fail(at, "has no POSITION attribute");
+            // What the primitive will add, from its accessors' counts, before any is read.
+            auto countOf = [&](int accessor) -> std::size_t {
+                return accessor >= 0 && static_cast<std::size_t>(accessor) < model_.accessors.size()
+                           ? model_.accessors[static_cast<std::size_t>(accessor)].count
+                           : 0;
+            };
+            const std::size_t vertexCount = countOf(positionAccessor);
+            totalVertices_ += vertexCount;
+            totalTriangles_ += (prim.indices >= 0 ? countOf(prim.indices) : vertexCount) / 3 + 1;
+            if (totalVertices_ > kMaxAssetVertices || totalTriangles_ > kMaxAssetTriangles)
+                fail(at + " (placed by " + nodeAt + ")",
+                     "the asset would hold more than " + std::to_string(kMaxAssetTriangles) + " triangles or " +
+                         std::to_string(kMaxAssetVertices) + " vertices (a mesh placed by very many nodes?)");
             const auto positions = readFloats<3>(positionAccessor, at + " POSITION");
             const std::size_t n = positions.size();
             auto sameCount = [&](std::size_t count, const char* what) {
@@ -686,6 +705,7 @@ private:
     const tinygltf::Model& model_;
     fs::path file_;
     Asset asset_;
+    std::size_t totalVertices_ = 0, totalTriangles_ = 0;
     std::vector<bool> onPath_;          // the nodes from the root to the one visited
     std::vector<unsigned char> reached_;  // 0 not yet, 1 reached, 2 reached again (warned)
 };
