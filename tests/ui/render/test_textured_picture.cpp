@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -37,16 +38,19 @@ constexpr int kSize = 256;
 constexpr int kCellsU = 8, kCellsV = 4;
 const glm::vec3 kRed(200, 30, 30), kTeal(20, 160, 170);
 
-std::shared_ptr<const PreparedEnvironment> forest(int faceSize) {
-    static std::shared_ptr<const PreparedEnvironment> env;
+std::shared_ptr<const PreparedEnvironment> environment(const std::string& map, int faceSize) {
+    static std::map<std::string, std::shared_ptr<const PreparedEnvironment>> cache;
+    auto& env = cache[map + "@" + std::to_string(faceSize)];
     if (!env) {
         EnvironmentSettings settings;
-        settings.source = test::asset("env/forest.exr").string();
+        settings.source = test::asset("env/" + map + ".exr").string();
         settings.faceSize = faceSize;
         env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
     }
     return env;
 }
+
+std::shared_ptr<const PreparedEnvironment> forest(int faceSize) { return environment("forest", faceSize); }
 
 test::TestImage checker() {
     return test::makeImage(256, 128, 3, [](int x, int y) -> std::vector<std::uint8_t> {
@@ -84,13 +88,12 @@ struct View {
     glm::mat4 inverse;
 };
 
-View render(const Scene& scene) {
+View render(const Scene& scene, const std::shared_ptr<const PreparedEnvironment>& env = forest(64)) {
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     EXPECT_NE(renderer, nullptr) << error;
     View v;
     if (!renderer) return v;
-    const auto env = forest(64);
     v.r = test::renderSettled(*renderer, scene, env, kSize);
     OrbitCamera camera;  // renderSettled's
     camera.yawDegrees = 30.0f;
@@ -193,9 +196,18 @@ TEST(TexturedPicture, BaseColourTexelsAppearAtTheirUvsAndAMissingTextureIsDrawnW
 // A roughness map gives every fragment its own lobe: the AOV's specular exponent at each pixel is
 // the lobe of the roughness the map holds at its UV (G rising from 0.3 at u = 0 to 0.9 at u = 1,
 // 8-bit), within the map's quantisation and the footprint's widening, and the stack holds them
-// (marked exact).
-TEST(TexturedPicture, AovExponentsFollowTheRoughnessMap) {
-    MIPGLOSS_REQUIRE_ASSET(test::asset("env/forest.exr"));
+// (marked exact). On three maps (forest without a sun, sunrise and interior with one) at three
+// base sizes.
+struct MapCase {
+    const char* map;
+    int faceSize;
+};
+class RoughnessMap : public ::testing::TestWithParam<MapCase> {};
+
+TEST_P(RoughnessMap, AovExponentsFollowTheMapAndThePictureTheExactLobes) {
+    const MapCase param = GetParam();
+    MIPGLOSS_REQUIRE_ASSET(test::asset(std::string("env/") + param.map + ".exr"));
+    const auto env = environment(param.map, param.faceSize);
     auto rough = [](float u) { return 0.3f + 0.6f * u; };
     const fs::path file = writeSphere("roughness_ramp", [&](test::GltfWriter& w) {
         const test::TestImage ramp = test::makeImage(256, 4, 3, [&](int x, int) -> std::vector<std::uint8_t> {
@@ -205,7 +217,7 @@ TEST(TexturedPicture, AovExponentsFollowTheRoughnessMap) {
         return test::pbrMaterial("Ramp", {0.5f, 0.5f, 0.5f, 1}, 1.0, 1.0, -1, mr);
     });
     const Scene scene = sceneOf(file);
-    const View v = render(scene);
+    const View v = render(scene, env);
     int count = 0, exact = 0;
     double worst = 0.0, sum = 0.0;
     float lowest = 1e30f, highest = 0.0f;
@@ -222,9 +234,10 @@ TEST(TexturedPicture, AovExponentsFollowTheRoughnessMap) {
         exact += v.r.aov.exact[i] > 0.5f ? 1 : 0;
         ++count;
     });
-    std::printf("[ textured ] roughness map: %d pixels, exponents %.2f to %.2f, roughness implied by the AOV "
-                "within %.4f of the map (mean %.4f), %.1f %% marked exact\n",
-                count, lowest, highest, worst, sum / std::max(count, 1), 100.0 * exact / std::max(count, 1));
+    std::printf("[ textured ] roughness map on %s at %d²: %d pixels, exponents %.2f to %.2f, roughness implied by "
+                "the AOV within %.4f of the map (mean %.4f), %.1f %% marked exact\n",
+                param.map, param.faceSize, count, lowest, highest, worst, sum / std::max(count, 1),
+                100.0 * exact / std::max(count, 1));
     ASSERT_GT(count, 1500);
     // The map's 8-bit steps are 1/255 = 0.004 in roughness; bilinear reads between them stay inside.
     EXPECT_LT(worst, 0.006);
@@ -247,15 +260,20 @@ TEST(TexturedPicture, AovExponentsFollowTheRoughnessMap) {
             exponents.push_back(layer->exponent[i]);
             directions.push_back(layer->direction[i]);
         }
-        const std::vector<Rgb> lobes = test::exactLobesAt(*forest(64)->base, exponents, directions);
+        const std::vector<Rgb> lobes = test::exactLobesAt(*env->base, exponents, directions);
         for (std::size_t k = 0; k < every.size(); ++k) predicted[k] += layer->weight[every[k]] * lobes[k];
     }
     for (std::size_t i : every) shown.push_back(Rgb(v.r.hdr[i]));
     const double error = relativeRms(shown, predicted);
-    std::printf("[ textured ] roughness map: picture vs Σ weight ⊙ exact lobe at %zu marked pixels: relative RMS %.2f %%\n",
-                every.size(), 100.0 * error);
+    std::printf("[ textured ] roughness map on %s at %d²: picture vs Σ weight ⊙ exact lobe at %zu marked pixels: "
+                "relative RMS %.2f %%\n",
+                param.map, param.faceSize, every.size(), 100.0 * error);
     EXPECT_LT(error, 0.02);
 }
+
+INSTANTIATE_TEST_SUITE_P(Maps, RoughnessMap,
+                         ::testing::Values(MapCase{"forest", 64}, MapCase{"sunrise", 128}, MapCase{"interior", 256}),
+                         [](const auto& testInfo) { return std::string(testInfo.param.map) + std::to_string(testInfo.param.faceSize); });
 
 // A constant normal map tilts the normal by its angle toward the tangent (+u): texel
 // (sin a, 0, cos a) encoded in 8 bits, a = 20°, on a sphere whose tangent is its +φ direction.
