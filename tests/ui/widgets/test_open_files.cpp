@@ -2,15 +2,25 @@
 // apart by extension (main_window.cpp, classify): a scene is .mipgloss or, from older versions,
 // .json; a .mglib library's materials are imported into the user's library; anything else is named
 // in an error message. Under QStandardPaths test mode, so the user's own library is never touched.
+#include "gltf_writer.h"
 #include "mipgloss/ui/autosave.h"
 #include "mipgloss/ui/library_document.h"
 #include "mipgloss/ui/main_window.h"
 #include "mipgloss/ui/recent_files.h"
 #include "mipgloss/ui/scene_document.h"
 
+#include "widget_test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <QDir>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QLabel>
+#include <QMimeData>
+#include <QSignalSpy>
+#include <QUndoStack>
+#include <QUrl>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 
@@ -95,4 +105,56 @@ TEST(OpenFiles, AnUnknownFileIsNamedInAnError) {
     w.openFiles({QStringLiteral("/nonexistent/notes.txt")});
     EXPECT_TRUE(w.lastMessageIsError());
     EXPECT_TRUE(w.lastMessage().contains(QStringLiteral("notes.txt"))) << w.lastMessage().toStdString();
+}
+
+// A glTF dropped on the window (a file manager's drag): its parts come in as one import with
+// their materials named as in the file and shared, the material panel says which parameters a
+// texture map sets, and a missing image is a warning, not an error; undo takes it all back.
+TEST(OpenFiles, ADroppedGltfBringsItsPartsAndNamedTexturedMaterials) {
+    useTestFolders();
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    const std::filesystem::path folder = dir.path().toStdString();
+    test::GltfWriter writer;
+    const test::TestImage grey = test::makeImage(8, 8, 3, [](int, int) { return std::vector<std::uint8_t>{90, 90, 90}; });
+    const int base = writer.addTexture(writer.addImage(test::encodePng(grey)));
+    const int missing = writer.addTexture(writer.addImage({}, "gone.png"));
+    const int textured = writer.addMaterial(test::pbrMaterial("Painted steel", {1, 1, 1, 1}, 1.0, 0.4, base, base));
+    const int bumpy = writer.addMaterial(test::pbrMaterial("Bumpy", {1, 1, 1, 1}, 0.0, 0.5, -1, -1, missing));
+    const int sphere = writer.addMesh(test::texturedSphere(8, 16), textured);
+    writer.addToScene(writer.addNode(sphere));
+    writer.addToScene(writer.addNode(sphere, {3.0, 0.0, 0.0}));  // the same material, shared
+    writer.addToScene(writer.addNode(writer.addMesh(test::texturedQuad(), bumpy), {0.0, 3.0, 0.0}));
+    writer.writeGlb(folder / "thing.glb");
+
+    MainWindow w;
+    SceneDocument* doc = w.document();
+    const int before = doc->objectCount();
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(QString::fromStdString((folder / "thing.glb").string()))});
+    QSignalSpy finished(&w, &MainWindow::importFinished);
+    QDragEnterEvent enter(QPoint(10, 10), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(&w, &enter);
+    ASSERT_TRUE(enter.isAccepted());
+    QDropEvent drop(QPointF(10, 10), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(&w, &drop);
+    ASSERT_TRUE(test::waitUntil([&] { return !finished.isEmpty(); }, 60000));
+    ASSERT_EQ(doc->objectCount(), before + 3) << w.lastMessage().toStdString();
+    EXPECT_FALSE(w.lastMessageIsError()) << w.lastMessage().toStdString();
+    EXPECT_TRUE(w.lastMessage().contains(QStringLiteral("gone.png"))) << w.lastMessage().toStdString();
+    EXPECT_EQ(doc->namedMaterialOf(before)->name, "Painted steel");
+    EXPECT_EQ(doc->object(before).material, doc->object(before + 1).material);
+    EXPECT_EQ(doc->namedMaterialOf(before + 2)->name, "Bumpy");
+    EXPECT_EQ(doc->object(before + 2).meshPart, 2);
+
+    doc->setSelected(before);
+    auto* label = w.findChild<QLabel*>(QStringLiteral("textureMapsLabel"));
+    ASSERT_NE(label, nullptr);
+    EXPECT_TRUE(label->text().contains(QStringLiteral("base colour"))) << label->text().toStdString();
+    EXPECT_TRUE(label->text().contains(QStringLiteral("roughness"))) << label->text().toStdString();
+    doc->setSelected(before + 2);
+    EXPECT_TRUE(label->text().contains(QStringLiteral("normal (missing)"))) << label->text().toStdString();
+
+    doc->undoStack()->undo();
+    EXPECT_EQ(doc->objectCount(), before);
 }
