@@ -21,6 +21,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -311,6 +312,57 @@ TEST(TexturedPicture, AConstantNormalMapTiltsTheLookupByItsAngle) {
     // The interpolated normal and tangent of a 48 × 96 sphere differ from the exact ones by the
     // facets' curvature (under 2° at this tessellation); the map's 8-bit texel is decoded above.
     EXPECT_LT(worst, 2.0);
+}
+
+// glTF's alpha mask cuts the fragments below its cutoff (the object is not drawn where its alpha,
+// factor × texel, is under it), and emission is added to the picture as it is: the same sphere
+// with and without an emissive factor differs by exactly that radiance at every covered pixel.
+TEST(TexturedPicture, AnAlphaMaskCutsAndEmissionIsAdded) {
+    MIPGLOSS_REQUIRE_ASSET(test::asset("env/forest.exr"));
+    // Texel alpha 0.2 and 0.8 under a cutoff of 0.5: the first sphere is cut everywhere (nothing
+    // drawn), the second nowhere (as many pixels as an opaque one).
+    auto masked = [](const char* name, std::uint8_t alpha) {
+        return writeSphere(name, [alpha](test::GltfWriter& w) {
+            const test::TestImage flat = test::makeImage(8, 8, 4, [alpha](int, int) -> std::vector<std::uint8_t> {
+                return {180, 180, 180, alpha};
+            });
+            tinygltf::Material m = test::pbrMaterial("Masked", {1, 1, 1, 1}, 0.0, 0.5, w.addTexture(w.addImage(test::encodePng(flat))));
+            m.alphaMode = "MASK";
+            m.alphaCutoff = 0.5;
+            return m;
+        });
+    };
+    auto drawnPixels = [](const View& view) {
+        return std::count_if(view.r.aov.exponent.begin(), view.r.aov.exponent.end(), [](float e) { return e > 0.0f; });
+    };
+    const auto cut = drawnPixels(render(sceneOf(masked("cut", 51))));
+    const auto kept = drawnPixels(render(sceneOf(masked("kept", 204))));
+    std::printf("[ textured ] alpha mask: %ld pixels drawn at alpha 0.2, %ld at alpha 0.8 (cutoff 0.5)\n",
+                static_cast<long>(cut), static_cast<long>(kept));
+    EXPECT_EQ(cut, 0);
+    EXPECT_GT(kept, 10000);
+
+    // Emission: (1, 0.5, 0.25) added to a plain grey dielectric.
+    auto glowing = [](double r, double g, double b) {
+        return [=](test::GltfWriter&) {
+            tinygltf::Material m = test::pbrMaterial("Glow", {0.5f, 0.5f, 0.5f, 1}, 0.0, 0.5);
+            m.emissiveFactor = {r, g, b};
+            return m;
+        };
+    };
+    const View dark = render(sceneOf(writeSphere("dark", glowing(0, 0, 0))));
+    const View lit = render(sceneOf(writeSphere("lit", glowing(1, 0.5, 0.25))));
+    double worst = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < lit.r.hdr.size(); ++i) {
+        if (dark.r.aov.exponent[i] == 0.0f || lit.r.aov.exponent[i] == 0.0f || dark.r.aov.cosView[i] < 0.3f) continue;
+        const glm::vec3 added = glm::vec3(lit.r.hdr[i] - dark.r.hdr[i]);
+        worst = std::max(worst, static_cast<double>(glm::length(added - glm::vec3(1.0f, 0.5f, 0.25f))));
+        ++n;
+    }
+    std::printf("[ textured ] emission (1, 0.5, 0.25): added within %.2e at %d pixels\n", worst, n);
+    ASSERT_GT(n, 5000);
+    EXPECT_LT(worst, 1e-3);
 }
 
 }  // namespace
