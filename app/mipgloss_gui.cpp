@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
         // The first frame drawn with it: its imported cube, the filtered chain maybe not yet.
         if (firstFrameMs < 0.0) firstFrameMs = sinceStartMs();
         // Then the whole scene: the complete environment, no build or import still under way.
-        if (!current->complete() || environments->busy() || window.importing()) return;
+        if (!current->complete() || environments->busy() || window.importing() || viewport->decodingTextures()) return;
         done = true;
         if (timing) {
             std::printf("first frame: %.0f ms (imported cube); complete frame: %.0f ms (environment "

@@ -449,6 +449,9 @@ void MainWindow::createViewToolBar() {
     // The comparison's environment is read by its own manager: its failures are shown too.
     connect(viewport_, &Viewport::comparisonFailed, this,
             [this](const QString& message) { showMessage(tr("Comparison: %1").arg(message), true); });
+    // A texture map that cannot be read is drawn without: said, not an error (nothing is lost).
+    connect(viewport_, &Viewport::textureWarnings, this,
+            [this](const QStringList& warnings) { showMessageOf(MessageKind::Other, warnings.join(QLatin1Char('\n')), false); });
 }
 
 void MainWindow::restoreLayout() {

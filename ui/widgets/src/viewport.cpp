@@ -1,5 +1,7 @@
 #include "mipgloss/ui/viewport.h"
 
+#include "mipgloss/scene/textures.h"
+
 #include "mipgloss/scene/picking.h"
 #include "mipgloss/scene/view_gestures.h"
 #include "mipgloss/ui/environment_manager.h"
@@ -12,7 +14,10 @@
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
+#include <QCoreApplication>
 #include <QPainter>
+#include <QPointer>
+#include <QThreadPool>
 #include <QTimer>
 #include <QWheelEvent>
 
@@ -110,9 +115,40 @@ bool Viewport::comparing() const {
 
 int Viewport::dividerX() const { return static_cast<int>(std::lround(divider_ * static_cast<float>(width()))); }
 
+void Viewport::decodeTextures(const Scene& scene, bool now) {
+    TextureCache& cache = sharedTextureCache();
+    std::vector<TextureRef> missing;
+    for (const TextureRef& t : texturesOf(scene))
+        if (!cache.find(t) && cache.problem(t).empty() && !texturesDecoding_.count(t.key())) missing.push_back(t);
+    if (missing.empty()) return;
+    if (now) {
+        const std::vector<std::string> warnings = cache.load(missing);
+        QStringList list;
+        for (const std::string& w : warnings) list << QString::fromStdString(w);
+        if (!list.isEmpty()) emit textureWarnings(list);
+        return;
+    }
+    for (const TextureRef& t : missing) texturesDecoding_.insert(t.key());
+    QPointer<Viewport> self(this);
+    QThreadPool::globalInstance()->start([self, missing] {
+        const std::vector<std::string> warnings = sharedTextureCache().load(missing);
+        QStringList list;
+        for (const std::string& w : warnings) list << QString::fromStdString(w);
+        QMetaObject::invokeMethod(qApp, [self, missing, list] {
+            if (!self) return;
+            for (const TextureRef& t : missing) self->texturesDecoding_.erase(t.key());
+            if (!list.isEmpty()) emit self->textureWarnings(list);
+            self->update();
+        }, Qt::QueuedConnection);
+    });
+}
+
 void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool transparent, bool outline) {
     std::optional<Scene> changed;
     const Scene& shown = shownScene(interactive, changed);
+    // The maps a scene opened or a material applied reads: drawn without them until they arrive,
+    // except in an exported picture, which waits for them.
+    decodeTextures(shown, fbo != defaultFramebufferObject());
     const OrbitCamera camera = shownView().camera;
     const int highlighted = outline ? document_->selected() : -1;
     renderer_->setEnvironment(environments_->current());

@@ -29,6 +29,8 @@
 #include <QString>
 
 #include <memory>
+#include <set>
+#include <string>
 #include <optional>
 
 class QTimer;
@@ -62,6 +64,9 @@ public:
 
     // The turntable: running, what turns, its speed (degrees per second) and its angle now.
     bool turntableRunning() const;
+    // Texture maps the scene's materials read that are being decoded now (on a worker thread:
+    // a scene opened, a library material applied); the view redraws when they arrive.
+    bool decodingTextures() const { return !texturesDecoding_.empty(); }
     TurntableSpin turntableSpin() const { return turntableSpin_; }
     float turntableSpeed() const { return turntableSpeed_; }
     float turntableDegrees() const { return turntableDegrees_; }
@@ -102,6 +107,8 @@ public slots:
 
 signals:
     void frameDrawn(quint64 frameNumber);
+    // Texture maps decoded on demand (decodeTextures) that could not be read, each naming its file.
+    void textureWarnings(const QStringList& warnings);
     void objectClicked(int index);  // -1: empty space
     void glFailed(const QString& message);
     void cameraChanged();  // any gesture, framing or setCamera
@@ -146,6 +153,10 @@ private:
     SceneDocument* document_;
     EnvironmentManager* environments_;
     std::unique_ptr<Renderer> renderer_;
+    // Decodes the maps `scene` reads that the texture cache lacks: at once when `now` (a picture
+    // exported), else on a worker, with a redraw when they are there.
+    void decodeTextures(const Scene& scene, bool now);
+    std::set<std::string> texturesDecoding_;  // TextureRef keys on a worker now
     OrbitCamera camera_;
     bool framedOnce_ = false;
     bool showCounters_ = false;
