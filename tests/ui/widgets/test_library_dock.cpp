@@ -3,6 +3,7 @@
 // material drags (material_mime.h), ThumbnailCache (drawn under the current environment, only
 // for visible rows, never twice for the same parameters), LibraryDock (apply by double-click,
 // add from the selected object, search) and drops on the viewport.
+#include "gltf_writer.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/library_dock.h"
 #include "mipgloss/ui/library_document.h"
@@ -674,4 +675,33 @@ TEST(Viewport, DroppedMaterialGoesToTheObjectUnderTheCursor) {
     QMimeData files;
     files.setUrls({QUrl::fromLocalFile(QStringLiteral("/tmp/scene.json"))});
     EXPECT_FALSE(dragAndDrop(viewport, onRight, &files).entered);
+}
+
+// "Import Library…" takes an asset too: its materials, named as in the file, textured, one undo
+// step; the same asset again adds nothing (equal entries are skipped).
+TEST(LibraryDocument, ImportingAGltfAddsItsNamedTexturedMaterialsAsOneStep) {
+    test::TempDir dir;
+    test::GltfWriter w;
+    const test::TestImage grey = test::makeImage(4, 4, 3, [](int, int) { return std::vector<std::uint8_t>{90, 90, 90}; });
+    const int base = w.addTexture(w.addImage(test::encodePng(grey)));
+    const int a = w.addMaterial(test::pbrMaterial("Painted steel", {1, 1, 1, 1}, 1.0, 0.4, base));
+    const int b = w.addMaterial(test::pbrMaterial("Rubber", {0.05f, 0.05f, 0.05f, 1}, 0.0, 0.8));
+    w.addToScene(w.addNode(w.addMesh(test::texturedQuad(), a)));
+    w.addToScene(w.addNode(w.addMesh(test::texturedQuad(), b), {3.0, 0.0, 0.0}));
+    w.writeGlb(dir / "tool.glb");
+
+    QUndoStack stack;
+    LibraryDocument doc(&stack);
+    EXPECT_EQ(doc.importFrom(dir / "tool.glb"), 2) << doc.lastError().toStdString();
+    ASSERT_EQ(doc.count(), 2);
+    EXPECT_EQ(doc.entry(0).name, "Painted steel");
+    EXPECT_EQ(doc.entry(0).material.layers.maps.baseColor.image, 0);
+    EXPECT_EQ(doc.entry(0).material.layers.maps.baseColor.file, (dir / "tool.glb").string());
+    EXPECT_EQ(doc.entry(1).name, "Rubber");
+    EXPECT_EQ(doc.importFrom(dir / "tool.glb"), 0);
+    stack.undo();
+    EXPECT_EQ(doc.count(), 0);
+    test::writeBytes(dir / "broken.glb", "glTF");
+    EXPECT_EQ(doc.importFrom(dir / "broken.glb"), -1);
+    EXPECT_TRUE(doc.lastError().contains(QStringLiteral("broken.glb"))) << doc.lastError().toStdString();
 }

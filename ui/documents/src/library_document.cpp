@@ -1,5 +1,7 @@
 #include "mipgloss/ui/library_document.h"
 
+#include "mipgloss/scene/asset.h"
+
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/library_file.h"
 
@@ -236,7 +238,16 @@ void LibraryDocument::move(int from, int to) {
 int LibraryDocument::importFrom(const std::filesystem::path& file) {
     MaterialLibrary incoming;
     try {
-        incoming = loadLibrary(file);
+        if (isAssetFile(file)) {
+            // An asset's materials (glTF, OBJ with MTL), named as in the file, their texture maps
+            // referring to its images by absolute path (asset.h).
+            const Asset asset = loadAsset(std::filesystem::absolute(file).lexically_normal());
+            if (asset.materials.empty()) throw AssetError(file, "has no materials to import");
+            for (const AssetMaterial& m : asset.materials)
+                incoming.entries.push_back({materialNameProblem(m.name).empty() ? m.name : "Material", m.material});
+        } else {
+            incoming = loadLibrary(file);
+        }
     } catch (const std::exception& e) {
         lastError_ = errorText(e);
         return -1;

@@ -38,7 +38,10 @@ std::filesystem::path toPath(const QString& path) { return std::filesystem::path
 QString fromPath(const std::filesystem::path& path) { return QString::fromStdU16String(path.u16string()); }
 
 // Libraries are saved as .mglib (the type the desktop's MIME database knows); older ones are .json.
-QString libraryOpenFilter() { return QObject::tr("Material libraries (*.mglib *.json);;All files (*)"); }
+QString libraryOpenFilter() {
+    return QObject::tr("Material libraries and assets (*.mglib *.json *.gltf *.glb *.obj);;Material libraries "
+                       "(*.mglib *.json);;Assets' materials (*.gltf *.glb *.obj);;All files (*)");
+}
 QString librarySaveFilter() { return QObject::tr("Material libraries (*.mglib);;All files (*)"); }
 QString withLibrarySuffix(QString path) {
     if (!path.isEmpty() && QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".mglib");
@@ -280,7 +283,7 @@ void LibraryDock::createActions() {
     duplicateEntryAction_ = make(tr("Duplicate"), "libraryDuplicateAction", tr("Copy the material under a new name"));
     deleteEntryAction_ = make(tr("Delete"), "libraryDeleteAction", tr("Remove the material from the library"));
     importLibraryAction_ = make(tr("Import Library…"), "libraryImportAction",
-                                tr("Add the materials of a library file to your library"));
+                                tr("Add the materials of a library file, or of a glTF or OBJ asset, to your library"));
     exportLibraryAction_ = make(tr("Export Library…"), "libraryExportAction",
                                 tr("Write your library to a file to share it"));
 

@@ -71,7 +71,8 @@ public:
     // Moves the entry at `from` so it ends at row `to`.
     void move(int from, int to);
 
-    // Appends every entry of a library file as one undo step: a name already here gets a free one
+    // Appends every entry of a library file (or every material of an asset file: glTF, OBJ with
+    // MTL, asset.h, named as in it, with their texture maps) as one undo step: a name already here gets a free one
     // (uniqueName), an entry equal to one already here (name and parameters) is skipped, so
     // importing the same file twice adds nothing. The number added, or -1 with lastError() when
     // the file cannot be read; nothing changes then.
