@@ -1,5 +1,7 @@
 #include "mipgloss/scene/asset.h"
 
+#include "formats/asset_files.h"
+
 #include <glm/common.hpp>
 
 #include <algorithm>
@@ -13,8 +15,6 @@ namespace fs = std::filesystem;
 
 namespace mipgloss {
 
-Asset loadGltfFile(const fs::path& path);  // formats/gltf.cpp
-
 namespace {
 
 constexpr std::array<const char*, 3> kAssetExtensions = {".gltf", ".glb", ".obj"};
@@ -23,14 +23,6 @@ std::string lowerExtension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return ext;
-}
-
-std::vector<unsigned char> readBytes(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw AssetError(path, kFileNotFound);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw AssetError(path, "cannot open the file");
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // The OBJ's mtllib names and whether it has texture coordinates: what makes it an asset.
@@ -70,6 +62,14 @@ ObjOutline outline(std::span<const unsigned char> bytes) {
 
 }  // namespace
 
+std::vector<unsigned char> readAssetFile(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw AssetError(path, kFileNotFound);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw AssetError(path, "cannot open the file");
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 std::span<const char* const> assetExtensions() { return kAssetExtensions; }
 
 std::vector<const char*> importExtensions() {
@@ -90,7 +90,7 @@ Asset loadAsset(const fs::path& path) {
     const std::string ext = lowerExtension(path);
     if (ext == ".gltf" || ext == ".glb") return loadGltfFile(path);
     if (ext == ".obj") {
-        const std::vector<unsigned char> bytes = readBytes(path);
+        const std::vector<unsigned char> bytes = readAssetFile(path);
         const ObjOutline o = outline(bytes);
         if (!o.libraries.empty() || o.hasUvs) {
             std::vector<std::vector<unsigned char>> libraryBytes;
@@ -99,7 +99,7 @@ Asset loadAsset(const fs::path& path) {
                 std::error_code ec;
                 const fs::path mtl = path.parent_path() / name;
                 if (!fs::is_regular_file(mtl, ec)) continue;  // the reader warns
-                libraryBytes.push_back(readBytes(mtl));
+                libraryBytes.push_back(readAssetFile(mtl));
             }
             std::size_t k = 0;
             for (const std::string& name : o.libraries) {

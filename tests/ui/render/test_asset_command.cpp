@@ -5,6 +5,7 @@
 // refused naming the file and the element, exit status 1, never a crash. Assets written here
 // (tests/tools/gltf_writer.h), none tuned to.
 #include "gltf_writer.h"
+#include "cli_support.h"
 #include "test_support.h"
 
 #include <OpenImageIO/imageio.h>
@@ -27,18 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-CliResult runCli(const QStringList& args) {
-    QProcess process;
-    process.start(QStringLiteral(MIPGLOSS_CLI), args);
-    process.waitForFinished(180000);
-    return {process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1,
-            process.readAllStandardOutput().toStdString(), process.readAllStandardError().toStdString()};
-}
+using test::CliResult;
+using test::runCli;
 
 QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 

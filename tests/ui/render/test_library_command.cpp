@@ -6,6 +6,7 @@
 #include "mipgloss/scene/library.h"
 #include "mipgloss/ui/library_file.h"
 #include "mipgloss/ibl/specular.h"
+#include "cli_support.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -30,18 +31,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-CliResult runCli(const QStringList& args) {
-    QProcess process;
-    process.start(QStringLiteral(MIPGLOSS_CLI), args);
-    process.waitForFinished(120000);
-    return {process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1,
-            process.readAllStandardOutput().toStdString(), process.readAllStandardError().toStdString()};
-}
+using test::CliResult;
+using test::runCli;
 
 QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 

@@ -3,6 +3,8 @@
 // checks only the JSON's shape (an accessor may point past its buffer, an index past its vertices).
 #include "mipgloss/scene/asset.h"
 
+#include "formats/asset_files.h"
+
 #include "mipgloss/io/file_error.h"
 
 #include <tiny_gltf.h>
@@ -710,14 +712,6 @@ private:
     std::vector<unsigned char> reached_;  // 0 not yet, 1 reached, 2 reached again (warned)
 };
 
-std::vector<unsigned char> readFileBytes(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw AssetError(path, kFileNotFound);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw AssetError(path, "cannot open the file");
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 }  // namespace
 
 Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const fs::path& file) {
@@ -727,7 +721,7 @@ Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const fs::path& f
 }
 
 Asset loadGltfFile(const fs::path& path) {
-    const std::vector<unsigned char> bytes = readFileBytes(path);
+    const std::vector<unsigned char> bytes = readAssetFile(path);
     if (bytes.empty()) throw AssetError(path, "file is empty (0 bytes)");
     const tinygltf::Model model = parseModel(bytes, path, FileAccess{true, false});
     return Reader(model, path).read();
@@ -746,7 +740,7 @@ EncodedImage gltfImageBytes(const fs::path& file, int image) {
     if (file != lastFile || time != lastTime) {
         lastImages.clear();
         lastFile.clear();
-        const std::vector<unsigned char> bytes = readFileBytes(file);
+        const std::vector<unsigned char> bytes = readAssetFile(file);
         const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true});
         for (const tinygltf::Image& i : model.images) lastImages.push_back(EncodedImage{i.image, i.mimeType});
         lastFile = file;
