@@ -550,7 +550,7 @@ void MaterialPanel::buildLayeredEditor(QWidget* parent) {
 
     textureMaps_ = new QLabel(layered_);
     textureMaps_->setObjectName(QStringLiteral("textureMapsLabel"));
-    textureMaps_->setWordWrap(true);
+    // One map a line, no word wrap: a wrapped label in this scrolled form was given one line's height.
     textureMaps_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     form->addRow(tr("Textures"), textureMaps_);
 }
@@ -630,10 +630,9 @@ void MaterialPanel::refreshLayers(const Material& m) {
     textureMaps_->setVisible(!mapped.isEmpty());
     if (auto* form = qobject_cast<QFormLayout*>(layered_->layout()))
         if (QWidget* label = form->labelForField(textureMaps_)) label->setVisible(!mapped.isEmpty());
-    textureMaps_->setText(mapped.isEmpty() ? QString()
-                                           : tr("%1 (maps × the values above)")
-                                                 .arg(mapped.join(QStringLiteral(", "))));
-    textureMaps_->setToolTip(files.join(QLatin1Char('\n')));
+    textureMaps_->setText(mapped.join(QLatin1Char('\n')));
+    textureMaps_->setToolTip(tr("Texture maps set these; the values above multiply them.\n%1")
+                                 .arg(files.join(QLatin1Char('\n'))));
     const QColor color = colorFromLinear(l.baseColor);
     baseColor_->setIcon(swatch(color));
     baseColor_->setToolTip(colourTip(
