@@ -221,10 +221,9 @@ int importGltf(Args args) {
     MaterialLibrary library = exists ? load(file) : MaterialLibrary{};
     std::vector<std::string> added;
     for (const AssetMaterial& m : asset.materials) {
-        std::string name = m.name;
-        if (!materialNameProblem(name).empty()) name = "Material";
-        name = library.uniqueName(name);
-        library.entries.push_back({name, m.material});
+        LibraryMaterial entry = libraryEntryOf(m);
+        const std::string name = entry.name = library.uniqueName(entry.name);
+        library.entries.push_back(std::move(entry));
         added.push_back("\"" + name + "\"" + (name == m.name ? std::string() : " (\"" + m.name + "\" in the file)") +
                         (m.material.layers.maps.anyTexture() ? ", textured" : ""));
     }

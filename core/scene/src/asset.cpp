@@ -1,6 +1,8 @@
 #include "mipgloss/scene/asset.h"
 
 #include "formats/asset_files.h"
+#include "formats/mesh_formats.h"
+#include "formats/reading.h"
 
 #include <glm/common.hpp>
 
@@ -17,13 +19,9 @@ namespace mipgloss {
 
 namespace {
 
-constexpr std::array<const char*, 3> kAssetExtensions = {".gltf", ".glb", ".obj"};
+using meshfile::lowerExtension;
 
-std::string lowerExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
+constexpr std::array<const char*, 3> kAssetExtensions = {".gltf", ".glb", ".obj"};
 
 // The OBJ's mtllib names and whether it has texture coordinates: what makes it an asset.
 struct ObjOutline {
@@ -122,6 +120,10 @@ Asset loadAsset(const fs::path& path) {
     part.mesh = std::make_shared<const Mesh>(std::move(mesh));
     asset.parts.push_back(std::move(part));
     return asset;
+}
+
+LibraryMaterial libraryEntryOf(const AssetMaterial& material) {
+    return {materialNameProblem(material.name).empty() ? material.name : "Material", material.material};
 }
 
 Bounds assetBounds(const Asset& asset) {

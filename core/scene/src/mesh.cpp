@@ -1,6 +1,7 @@
 #include "mipgloss/scene/mesh.h"
 
 #include "formats/mesh_formats.h"
+#include "formats/reading.h"
 #include "mipgloss/io/atomic_write.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -61,22 +62,12 @@ bool Mesh::isValid() const {
 namespace {
 
 using meshfile::faces;
+using meshfile::lowerExtension;
 using meshfile::vertices;
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 using OpenMesh::VertexHandle;
 
 constexpr std::array<const char*, 5> kExtensions = {".obj", ".off", ".ply", ".stl", ".om"};
-
-// A face is zero-area when its height is below this fraction of its longest edge: collinear at
-// float precision (a float coordinate holds ~7 digits). Its normal would be noise, its weight nil.
-constexpr double kDegenerateHeight = 1e-7;
-
-std::string lowerExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 std::string extensionList() {
     std::string list;
@@ -92,12 +83,7 @@ std::mutex& openMeshMutex() {
 }
 
 bool isZeroArea(const std::array<float, 3>& a, const std::array<float, 3>& b, const std::array<float, 3>& c) {
-    const glm::dvec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]), pc(c[0], c[1], c[2]);
-    const glm::dvec3 e0 = pb - pa, e1 = pc - pa, e2 = pc - pb;
-    const glm::dvec3 n = glm::cross(e0, e1);
-    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
-    // height = |n| / longest <= k * longest
-    return glm::dot(n, n) <= kDegenerateHeight * kDegenerateHeight * longest2 * longest2;
+    return isZeroAreaTriangle({a[0], a[1], a[2]}, {b[0], b[1], b[2]}, {c[0], c[1], c[2]});
 }
 
 constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
@@ -296,6 +282,17 @@ Mesh makeSphere(int rings, int segments) {
     return mesh;
 }
 
+bool isZeroAreaTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    // A float coordinate holds ~7 digits: a height below 1e-7 of the longest edge is collinear.
+    constexpr double kDegenerateHeight = 1e-7;
+    const glm::dvec3 pa(a), pb(b), pc(c);
+    const glm::dvec3 e0 = pb - pa, e1 = pc - pa, e2 = pc - pb;
+    const glm::dvec3 n = glm::cross(e0, e1);
+    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
+    // height = |n| / longest <= k * longest
+    return glm::dot(n, n) <= kDegenerateHeight * kDegenerateHeight * longest2 * longest2;
+}
+
 void computeVertexNormals(Mesh& mesh) {
     // The cross product of two edges is the face normal scaled by twice the area: summing them
     // weights each face by its area.
@@ -314,6 +311,16 @@ void computeVertexNormals(Mesh& mesh) {
         mesh.normals[v] =
             length > 0.0 && std::isfinite(length) ? glm::vec3(sum[v] / length) : glm::vec3(0.0f, 1.0f, 0.0f);
     }
+}
+
+void fillMissingNormals(Mesh& mesh) {
+    const auto zero = [](const glm::vec3& n) { return n == glm::vec3(0.0f); };
+    if (mesh.normals.size() == mesh.positions.size() && std::none_of(mesh.normals.begin(), mesh.normals.end(), zero))
+        return;
+    std::vector<glm::vec3> authored = std::move(mesh.normals);
+    computeVertexNormals(mesh);
+    for (std::size_t v = 0; v < authored.size() && v < mesh.normals.size(); ++v)
+        if (!zero(authored[v])) mesh.normals[v] = authored[v];
 }
 
 Mesh makeUvSphere(int rings, int segments) {

@@ -20,13 +20,12 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs)
     {
         std::lock_guard lock(mutex_);
         std::set<std::string> seen;
+        // key() names the image, whatever channel a map reads of it.
         for (const TextureRef& ref : refs) {
             if (ref.empty()) continue;
-            TextureRef image = ref;
-            image.channel = 0;  // one image whatever channel a map reads
-            const std::string key = image.key();
+            const std::string key = ref.key();
             if (images_.count(key) || problems_.count(key) || !seen.insert(key).second) continue;
-            todo.push_back(image);
+            todo.push_back(ref);
         }
     }
     struct Result {
@@ -78,18 +77,14 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs)
 }
 
 std::shared_ptr<const TextureImage> TextureCache::find(const TextureRef& ref) const {
-    TextureRef image = ref;
-    image.channel = 0;
     std::lock_guard lock(mutex_);
-    const auto it = images_.find(image.key());
+    const auto it = images_.find(ref.key());
     return it == images_.end() ? nullptr : it->second;
 }
 
 std::string TextureCache::problem(const TextureRef& ref) const {
-    TextureRef image = ref;
-    image.channel = 0;
     std::lock_guard lock(mutex_);
-    const auto it = problems_.find(image.key());
+    const auto it = problems_.find(ref.key());
     return it == problems_.end() ? std::string() : it->second;
 }
 
@@ -115,10 +110,8 @@ std::vector<TextureRef> texturesOf(const Scene& scene) {
     std::set<std::string> seen;
     for (const NamedMaterial& m : scene.materials) {
         if (!m.material.layered) continue;
-        for (TextureRef t : m.material.layers.maps.textures()) {
-            t.channel = 0;
+        for (const TextureRef& t : m.material.layers.maps.textures())
             if (seen.insert(t.key()).second) out.push_back(t);
-        }
     }
     return out;
 }

@@ -243,8 +243,7 @@ int LibraryDocument::importFrom(const std::filesystem::path& file) {
             // referring to its images by absolute path (asset.h).
             const Asset asset = loadAsset(std::filesystem::absolute(file).lexically_normal());
             if (asset.materials.empty()) throw AssetError(file, "has no materials to import");
-            for (const AssetMaterial& m : asset.materials)
-                incoming.entries.push_back({materialNameProblem(m.name).empty() ? m.name : "Material", m.material});
+            for (const AssetMaterial& m : asset.materials) incoming.entries.push_back(libraryEntryOf(m));
         } else {
             incoming = loadLibrary(file);
         }

@@ -221,10 +221,8 @@ struct Renderer::Impl {
     // not decoded (yet, or refused: TextureCache::problem).
     GLuint mapTexture(const TextureRef& ref, bool srgb) {
         if (ref.empty()) return 0;
-        TextureRef image = ref;
-        image.channel = 0;
-        const auto key = std::make_pair(image.key(), srgb);
-        const std::shared_ptr<const TextureImage> decoded = sharedTextureCache().find(image);
+        const auto key = std::make_pair(ref.key(), srgb);  // the image, whatever channel a map reads
+        const std::shared_ptr<const TextureImage> decoded = sharedTextureCache().find(ref);
         auto it = mapTextures.find(key);
         if (it != mapTextures.end() && it->second.image == decoded) return it->second.texture;
         if (it != mapTextures.end()) {

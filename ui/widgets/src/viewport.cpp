@@ -121,19 +121,21 @@ void Viewport::decodeTextures(const Scene& scene, bool now) {
     for (const TextureRef& t : texturesOf(scene))
         if (!cache.find(t) && cache.problem(t).empty() && !texturesDecoding_.count(t.key())) missing.push_back(t);
     if (missing.empty()) return;
-    if (now) {
-        const std::vector<std::string> warnings = cache.load(missing);
+    // The cache's warnings, for textureWarnings.
+    auto decode = [](const std::vector<TextureRef>& refs) {
         QStringList list;
-        for (const std::string& w : warnings) list << QString::fromStdString(w);
+        for (const std::string& w : sharedTextureCache().load(refs)) list << QString::fromStdString(w);
+        return list;
+    };
+    if (now) {
+        const QStringList list = decode(missing);
         if (!list.isEmpty()) emit textureWarnings(list);
         return;
     }
     for (const TextureRef& t : missing) texturesDecoding_.insert(t.key());
     QPointer<Viewport> self(this);
-    QThreadPool::globalInstance()->start([self, missing] {
-        const std::vector<std::string> warnings = sharedTextureCache().load(missing);
-        QStringList list;
-        for (const std::string& w : warnings) list << QString::fromStdString(w);
+    QThreadPool::globalInstance()->start([self, missing, decode] {
+        const QStringList list = decode(missing);
         QMetaObject::invokeMethod(qApp, [self, missing, list] {
             if (!self) return;
             for (const TextureRef& t : missing) self->texturesDecoding_.erase(t.key());

@@ -4,6 +4,8 @@
 #include "mipgloss/scene/asset.h"
 
 #include "formats/asset_files.h"
+#include "formats/mesh_formats.h"
+#include "formats/reading.h"
 
 #include "mipgloss/io/file_error.h"
 
@@ -52,8 +54,7 @@ constexpr std::size_t kMaxAssetVertices = std::size_t(1) << 25;
 constexpr std::size_t kMaxAssetTriangles = std::size_t(1) << 25;
 
 bool isImageFile(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = meshfile::lowerExtension(path);
     for (const char* e : {".png", ".jpg", ".jpeg", ".webp", ".ktx", ".ktx2", ".bmp", ".gif", ".tga", ".exr", ".hdr",
                           ".tif", ".tiff", ".dds"})
         if (ext == e) return true;
@@ -588,16 +589,9 @@ public:
                 warn(at + " has no triangles with area; left out");
                 continue;
             }
-            if (mesh.normals.empty()) {
-                computeVertexNormals(mesh);
-            } else {
-                // A zero normal in the file: the computed one there. (The vertices are the ones
-                // left after dropDegenerate, fewer than the accessors' n when it dropped any.)
-                Mesh computed = mesh;
-                computeVertexNormals(computed);
-                for (std::size_t i = 0; i < mesh.normals.size(); ++i)
-                    if (glm::dot(mesh.normals[i], mesh.normals[i]) == 0.0f) mesh.normals[i] = computed.normals[i];
-            }
+            // No NORMAL, or a zero one: the computed one there. (The vertices are the ones left
+            // after dropDegenerate, fewer than the accessors' n when it dropped any.)
+            fillMissingNormals(mesh);
             if (prim.material >= 0 && static_cast<std::size_t>(prim.material) >= model_.materials.size())
                 fail(at, "refers to material " + std::to_string(prim.material) + ", but the file has " +
                              std::to_string(model_.materials.size()));
@@ -628,19 +622,15 @@ public:
         return out;
     }
 
-    // Zero-area triangles go (mesh.h's rule: height below 1e-7 of the longest edge), and the
+    // Zero-area triangles go (mesh.h, isZeroAreaTriangle), and the
     // vertices no triangle uses then, so the bounds hold only what is drawn.
     void dropDegenerate(Mesh& mesh, const std::string& at) {
         std::vector<std::uint32_t> kept;
         kept.reserve(mesh.indices.size());
         std::size_t dropped = 0;
         for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
-                c(mesh.positions[mesh.indices[t + 2]]);
-            const glm::dvec3 e0 = b - a, e1 = c - a, e2 = c - b;
-            const glm::dvec3 nrm = glm::cross(e0, e1);
-            const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
-            if (glm::dot(nrm, nrm) <= 1e-14 * longest2 * longest2) {
+            if (isZeroAreaTriangle(mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
+                                   mesh.positions[mesh.indices[t + 2]])) {
                 ++dropped;
                 continue;
             }

@@ -459,16 +459,6 @@ std::uint32_t vertexOf(ObjReader& r, PartBuilder& part, const Corner& c, std::in
     return index;
 }
 
-// A triangle is zero-area when its height is below 1e-7 of its longest edge (mesh.cpp's rule:
-// collinear at float precision; its normal would be noise, its weight nil).
-bool isZeroArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    constexpr double kDegenerateHeight = 1e-7;
-    const glm::dvec3 pa(a), pb(b), pc(c);
-    const glm::dvec3 e0 = pb - pa, e1 = pc - pa, e2 = pc - pb;
-    const glm::dvec3 n = glm::cross(e0, e1);
-    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
-    return glm::dot(n, n) <= kDegenerateHeight * kDegenerateHeight * longest2 * longest2;
-}
 
 // "f c1 c2 c3 ...": a fan of triangles into the current material's part.
 void readFace(ObjReader& r, std::string_view rest, const Where& where) {
@@ -486,7 +476,7 @@ void readFace(ObjReader& r, std::string_view rest, const Where& where) {
     PartBuilder& part = currentPart(r);
     for (std::size_t i = 1; i + 1 < r.corners.size(); ++i) {
         const std::array<Corner, 3> tri{r.corners[0], r.corners[i], r.corners[i + 1]};
-        if (isZeroArea(r.positions[tri[0].position], r.positions[tri[1].position], r.positions[tri[2].position])) {
+        if (isZeroAreaTriangle(r.positions[tri[0].position], r.positions[tri[1].position], r.positions[tri[2].position])) {
             ++r.zeroArea;
             continue;
         }
@@ -578,10 +568,7 @@ void readObjLines(ObjReader& r, std::span<const unsigned char> bytes) {
 Mesh finishedMesh(PartBuilder& part, bool normalMap) {
     Mesh mesh = std::move(part.mesh);
     mesh.name = part.name;
-    const std::vector<glm::vec3> fromFile = std::move(mesh.normals);
-    computeVertexNormals(mesh);
-    for (std::size_t v = 0; v < fromFile.size(); ++v)
-        if (fromFile[v] != glm::vec3(0.0f)) mesh.normals[v] = fromFile[v];
+    fillMissingNormals(mesh);
     if (!part.anyUv) mesh.uvs.clear();
     computeBounds(mesh);
     if (normalMap && !mesh.uvs.empty()) computeTangents(mesh);

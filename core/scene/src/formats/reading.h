@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -22,6 +23,13 @@
 #include <string>
 
 namespace mipgloss::meshfile {
+
+// A path's extension in lower case with its dot (".obj"): how every reader picks a format.
+inline std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
 
 // "1 face", "3 faces", "1 vertex", "2 vertices".
 inline std::string count(std::size_t n, std::string_view one, std::string_view many) {

@@ -27,6 +27,7 @@
 // when the textures are decoded (TextureCache), and the part is drawn without it.
 #pragma once
 
+#include "mipgloss/scene/library.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/scene/scene.h"
 
@@ -47,6 +48,10 @@ struct AssetMaterial {
     std::string name;   // as in the file ("Material 3" when it has none), unique within the asset
     Material material;  // layered, with maps
 };
+
+// The material as a library entry: its name, or "Material" where that cannot be a library
+// material's name (library.h, materialNameProblem); the caller makes it unique in its library.
+LibraryMaterial libraryEntryOf(const AssetMaterial& material);
 
 struct AssetPart {
     std::string name;  // glTF: the node's (or mesh's) name, " 2", " 3" for more primitives; OBJ: the material's

@@ -88,8 +88,15 @@ Mesh makeSphere(int rings = 64, int segments = 128);
 // once around it (textured thumbnails).
 Mesh makeUvSphere(int rings = 48, int segments = 96);
 
+// The one rule for a zero-area (degenerate) triangle, every reader's: its height below 1e-7 of
+// its longest edge, collinear at float precision (its normal would be noise, its weight nil).
+bool isZeroAreaTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+
 // Area-weighted vertex normals from the faces; zero-area neighbourhoods get (0, 1, 0).
 void computeVertexNormals(Mesh& mesh);
+// Authored normals kept, computed ones (computeVertexNormals) where there are none or a vertex's
+// is zero: what the asset readers do with a file's normals (asset.h).
+void fillMissingNormals(Mesh& mesh);
 // Recomputes `bounds` from the positions.
 void computeBounds(Mesh& mesh);
 // Per-vertex tangents from the UVs (needs uvs): each triangle's tangent and bitangent from its
