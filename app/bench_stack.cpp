@@ -70,7 +70,7 @@ std::vector<int> parseList(const std::string& flag, const std::string& text) {
     return out;
 }
 
-double atlasMegabytes(const std::map<int, std::shared_ptr<const LobeCube>>& entries, const std::vector<int>& indices) {
+double atlasMegabytes(const std::map<int, std::shared_ptr<const LobeStackEntry>>& entries, const std::vector<int>& indices) {
     std::vector<std::pair<int, int>> sizes;
     for (int j : indices) sizes.emplace_back(j, entries.at(j)->cube->size());
     return lobeStackAtlas(sizes).megabytes(4);
@@ -106,11 +106,11 @@ int runStackBench(Args args) {
             prepared.filter = std::make_shared<const PhongFilter>(base);
             const int top = stackTop(size);
             // Build: every entry, sharpest first, each on all cores (PhongFilter::filter is parallel).
-            std::map<int, std::shared_ptr<const LobeCube>> entries;
+            std::map<int, std::shared_ptr<const LobeStackEntry>> entries;
             std::vector<int> all;
             const auto start = Clock::now();
             for (int j = top; j <= kStackLast; ++j) {
-                entries[j] = std::make_shared<const LobeCube>(makeLobeCube(prepared, j));
+                entries[j] = std::make_shared<const LobeStackEntry>(makeStackEntry(prepared, j));
                 all.push_back(j);
             }
             const double fullSeconds = secondsSince(start);
@@ -126,7 +126,7 @@ int runStackBench(Args args) {
             }
             const std::vector<int> inUse = lobesInUse(one, size);
             const auto oneStart = Clock::now();
-            for (int j : inUse) (void)makeLobeCube(prepared, j);
+            for (int j : inUse) (void)makeStackEntry(prepared, j);
             const double oneSeconds = secondsSince(oneStart);
             std::printf("\n## %s, base %d: entries %d..%d (n %.0f .. 0)\n", name.c_str(), size, top, kStackLast,
                         stackExponent(top));

@@ -139,9 +139,9 @@ namespace {
 // The lobe stack's entries a render reads from: those the scene's lobes read (the settled
 // picture); with `everything`, also every other the window makes ahead (--no-settle); none with
 // `none` (--no-stack).
-std::vector<std::shared_ptr<const LobeCube>> lobeStackFor(const PreparedEnvironment& environment, const Scene& scene,
+std::vector<std::shared_ptr<const LobeStackEntry>> lobeStackFor(const PreparedEnvironment& environment, const Scene& scene,
                                                           bool everything, bool none) {
-    std::vector<std::shared_ptr<const LobeCube>> lobes;
+    std::vector<std::shared_ptr<const LobeStackEntry>> lobes;
     if (none || !environment.filter) return lobes;
     const int baseSize = environment.filter->baseSize();
     std::vector<int> indices = lobesInUse(scene, baseSize);
@@ -149,7 +149,7 @@ std::vector<std::shared_ptr<const LobeCube>> lobeStackFor(const PreparedEnvironm
         const std::vector<int> ahead = lobesNear(indices, baseSize);
         indices.insert(indices.end(), ahead.begin(), ahead.end());
     }
-    for (int index : indices) lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
+    for (int index : indices) lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
     return lobes;
 }
 
@@ -511,7 +511,7 @@ int runRender(Args args, const char* argv0) {
     // The settled picture: each lobe in use from the lobe stack. Made once: turning the view
     // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
-    const std::vector<std::shared_ptr<const LobeCube>> lobes =
+    const std::vector<std::shared_ptr<const LobeStackEntry>> lobes =
         lobeStackFor(*environment, scene, noSettle, noStack);
     const double lobeSeconds = secondsSince(lobesStart);
     renderer.setLobes(lobes);

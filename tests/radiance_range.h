@@ -1,7 +1,7 @@
 // Issue 24, item 6 ("any radiance"): a held-out HDRI at any absolute scale, with or without a
 // one-pixel sun, written as a float EXR so that it goes through the whole import (decode,
 // sanitising, lat-long conversion), and the sun's energy computed analytically. Shared by the core
-// tests (chain levels, lobe cubes) and the render tests (the picture).
+// tests (chain levels, stack entries) and the render tests (the picture).
 #pragma once
 
 #include "mipgloss/io/image_file.h"

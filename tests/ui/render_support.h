@@ -157,7 +157,7 @@ struct SettledRender {
 
 inline SettledRender renderSettled(ui::OffscreenRenderer& renderer, const Scene& scene,
                                    const std::shared_ptr<const PreparedEnvironment>& env, int size) {
-    renderer.setLobes(makeLobeCubes(*env, scene));
+    renderer.setLobes(makeStackEntries(*env, scene));
     OrbitCamera camera;
     camera.yawDegrees = 30.0f;
     camera.pitchDegrees = 20.0f;

@@ -15,14 +15,14 @@ namespace mipgloss {
 
 namespace {
 
-// The lobe cubes' size limits: at least 16 (32 below n = 1), at most twice the base and 1024.
-constexpr int kMinLobeCubeSize = 16;
+// The stack entries' size limits: at least 16 (32 below n = 1), at most twice the base and 1024.
+constexpr int kMinStackEntryFace = 16;
 // Below n = 1 the kernel (R·ω)^n is nearly a step at the horizon (0.76 at R·ω = 0.01 for n = 0.06),
 // so a small bright source leaves an edge in the lobe, which 16² blurs: interior.exr at n = 0.06
 // read 2.9 % off at 16², 1.8 % at 32², for 0.05 s per entry (docs/lobe-stack.md).
-constexpr int kMinSteepLobeCubeSize = 32;
-constexpr int kMaxLobeCubeSize = 1024;
-int lobeCubeCap(int baseSize) { return std::min(2 * std::max(baseSize, 1), kMaxLobeCubeSize); }
+constexpr int kMinSteepStackEntryFace = 32;
+constexpr int kMaxStackEntryFace = 1024;
+int stackEntryFaceCap(int baseSize) { return std::min(2 * std::max(baseSize, 1), kMaxStackEntryFace); }
 
 // Weights of an area-proportional box from `from` texels to `to` texels along one axis:
 // destination texel d covers [d·from/to, (d+1)·from/to) of the source.
@@ -280,15 +280,15 @@ CubeMap PhongFilter::filter(double exponent, int size) const {
     return detail::convolve(impl_->sources[j], exponent, size, cut.cutoff);
 }
 
-int lobeCubeSize(double exponent, int baseSize) {
-    const int cap = lobeCubeCap(baseSize);
+int stackEntryFaceSize(double exponent, int baseSize) {
+    const int cap = stackEntryFaceCap(baseSize);
     const double wanted = std::ceil(std::sqrt(32.0 * std::max(exponent, 0.0)));
-    const int floor = exponent < 1.0 ? kMinSteepLobeCubeSize : kMinLobeCubeSize;
+    const int floor = exponent < 1.0 ? kMinSteepStackEntryFace : kMinStackEntryFace;
     return static_cast<int>(std::clamp(wanted, static_cast<double>(floor), static_cast<double>(std::max(cap, floor))));
 }
 
-bool lobeCubeHoldsLobe(double exponent, int baseSize) {
-    return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= lobeCubeCap(baseSize);
+bool stackEntryHoldsLobe(double exponent, int baseSize) {
+    return std::isfinite(exponent) && std::sqrt(32.0 * std::max(exponent, 0.0)) <= stackEntryFaceCap(baseSize);
 }
 
 MipChain buildPhongChain(const CubeMap& base, const BuildOptions& options, const PhongFilter* given) {

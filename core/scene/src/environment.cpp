@@ -63,7 +63,7 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
     }
     out.settings.faceSize = out.base->size();
 
-    // The filter lobe cubes are made from: kept with the import, made for the default builder.
+    // The filter stack entries are made from: kept with the import, made for the default builder.
     if (settings.builder == Builder::Phong) {
         if (previous && previous->filter && previous->sameImport(settings))
             out.filter = previous->filter;

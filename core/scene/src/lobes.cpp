@@ -17,7 +17,7 @@ double stackExponent(int index) { return lambdaToExponent(stackLambda(index)); }
 
 int stackTop(int baseSize) {
     for (int j = 1; j <= kStackLast; ++j)
-        if (lobeCubeHoldsLobe(stackExponent(j), baseSize)) return j;
+        if (stackEntryHoldsLobe(stackExponent(j), baseSize)) return j;
     return kStackLast;
 }
 
@@ -44,7 +44,7 @@ std::optional<StackBlend> stackBlend(double exponent, int baseSize) {
 
 int firstEntryMadeAhead(int baseSize) {
     int first = stackTop(baseSize);
-    while (first < kStackLast && lobeCubeSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
+    while (first < kStackLast && stackEntryFaceSize(stackExponent(first), baseSize) > kGrazingLargestFace) ++first;
     return first;
 }
 
@@ -122,27 +122,27 @@ std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reac
     return near;
 }
 
-LobeCube makeLobeCube(const PreparedEnvironment& environment, int index) {
-    if (!environment.filter) throw std::logic_error("makeLobeCube: the environment has no Phong filter");
-    if (index < 1 || index > kStackLast) throw std::out_of_range("makeLobeCube: no stack entry " + std::to_string(index));
-    LobeCube lobe;
+LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index) {
+    if (!environment.filter) throw std::logic_error("makeStackEntry: the environment has no Phong filter");
+    if (index < 1 || index > kStackLast) throw std::out_of_range("makeStackEntry: no stack entry " + std::to_string(index));
+    LobeStackEntry lobe;
     lobe.index = index;
     lobe.exponent = stackExponent(index);
-    const int size = lobeCubeSize(lobe.exponent, environment.filter->baseSize());
+    const int size = stackEntryFaceSize(lobe.exponent, environment.filter->baseSize());
     lobe.cube = std::make_shared<const CubeMap>(environment.filter->filter(lobe.exponent, size));
     lobe.filter = environment.filter;
     return lobe;
 }
 
-std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene) {
-    std::vector<std::shared_ptr<const LobeCube>> lobes;
+std::vector<std::shared_ptr<const LobeStackEntry>> makeStackEntries(const PreparedEnvironment& environment, const Scene& scene) {
+    std::vector<std::shared_ptr<const LobeStackEntry>> lobes;
     if (!environment.filter) return lobes;
     for (int index : lobesInUse(scene, environment.filter->baseSize()))
-        lobes.push_back(std::make_shared<const LobeCube>(makeLobeCube(environment, index)));
+        lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
     return lobes;
 }
 
-std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeCube>>& entries, double exponent,
+std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeStackEntry>>& entries, double exponent,
                                  int baseSize, const glm::vec3& direction) {
     const auto blend = stackBlend(exponent, baseSize);
     if (!blend) return std::nullopt;

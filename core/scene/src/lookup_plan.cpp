@@ -19,7 +19,7 @@ ObjectLookup planLookup(const Material& material, bool irradianceReady, int chai
     const bool chainOrLobe = plan.lookup != ShaderLookup::Irradiance;
     plan.sharperAtGrazing = material.sharperAtGrazing && chainOrLobe;
     plan.mirror = plan.lambda <= 0.0f && chainOrLobe;
-    plan.wantsLobeCube = chainOrLobe && plan.lambda > 0.0f;
+    plan.readsLobeStack = chainOrLobe && plan.lambda > 0.0f;
     plan.minLevel = material.sharperAtGrazing || plan.mirror
                         ? 0.0f
                         : static_cast<float>(chainLevelForExponent(plan.exponent, chainFaceSize));

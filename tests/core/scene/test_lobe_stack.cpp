@@ -47,9 +47,9 @@ TEST(LobeStack, NeighboursAreTwoToTheQuarterApartInExponent) {
 TEST(LobeStack, TopIsTheSharpestLobeItsCubeHoldsAndReachesTheIssuesRange) {
     for (int n : {16, 64, 256, 512}) {
         const int top = stackTop(n);
-        EXPECT_TRUE(lobeCubeHoldsLobe(stackExponent(top), n)) << n;
+        EXPECT_TRUE(stackEntryHoldsLobe(stackExponent(top), n)) << n;
         if (top > 1) {
-            EXPECT_FALSE(lobeCubeHoldsLobe(stackExponent(top - 1), n)) << n;
+            EXPECT_FALSE(stackEntryHoldsLobe(stackExponent(top - 1), n)) << n;
         }
     }
     // Issue 24 asks for n up to 4096 at base 256: the stack's top there is n = 7305 (face 484).
@@ -153,8 +153,8 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
     ASSERT_FALSE(grazing512.empty());
     EXPECT_GT(grazing512.front(), stackTop(512));
     EXPECT_EQ(grazing512.front(), firstEntryMadeAhead(512));
-    EXPECT_LE(lobeCubeSize(stackExponent(grazing512.front()), 512), kGrazingLargestFace);
-    EXPECT_GT(lobeCubeSize(stackExponent(grazing512.front() - 1), 512), kGrazingLargestFace);
+    EXPECT_LE(stackEntryFaceSize(stackExponent(grazing512.front()), 512), kGrazingLargestFace);
+    EXPECT_GT(stackEntryFaceSize(stackExponent(grazing512.front() - 1), 512), kGrazingLargestFace);
     // The end of the stack: n = 0 asks for the last entry only.
     EXPECT_EQ(lobesInUse(sceneOf({glossy(7.9f)}), 256), range(kStackLast, kStackLast));
     // Near: the rest of the stack (faces up to 512), nearest first, none repeated or in use.
@@ -172,7 +172,7 @@ TEST(LobeStack, InUseAreEachLobesNeighboursAndTheWiderOnesItsFootprintReaches) {
     for (int j : within) EXPECT_TRUE(j >= 24 && j <= 45) << j;
     // At base 512 no entry of a face over 512 is made ahead.
     for (int j : lobesNear(lobesInUse(sceneOf({glossy(4.0f)}), 512), 512))
-        EXPECT_LE(lobeCubeSize(stackExponent(j), 512), kGrazingLargestFace);
+        EXPECT_LE(stackEntryFaceSize(stackExponent(j), 512), kGrazingLargestFace);
 }
 
 TEST(LobeStack, EntryIsTheExactConvolutionAtItsCentres) {
@@ -181,31 +181,31 @@ TEST(LobeStack, EntryIsTheExactConvolutionAtItsCentres) {
     const PreparedEnvironment env = prepareEnvironment(settings, ChainNeeds{0, false});
     ASSERT_TRUE(env.filter);
     // Below n = 1 the faces are at least 32 (the kernel is nearly a step at the horizon).
-    EXPECT_EQ(lobeCubeSize(stackExponent(62), 32), 32);
-    EXPECT_EQ(lobeCubeSize(stackExponent(56), 32), 16);
+    EXPECT_EQ(stackEntryFaceSize(stackExponent(62), 32), 32);
+    EXPECT_EQ(stackEntryFaceSize(stackExponent(56), 32), 16);
     for (int index : {40, 56, 62, stackTop(32)}) {
         SCOPED_TRACE("entry " + std::to_string(index));
-        const LobeCube lobe = makeLobeCube(env, index);
+        const LobeStackEntry lobe = makeStackEntry(env, index);
         EXPECT_EQ(lobe.index, index);
         EXPECT_EQ(lobe.exponent, stackExponent(index));
         ASSERT_TRUE(lobe.cube);
-        EXPECT_EQ(lobe.cube->size(), lobeCubeSize(lobe.exponent, 32));
+        EXPECT_EQ(lobe.cube->size(), stackEntryFaceSize(lobe.exponent, 32));
         EXPECT_EQ(lobe.filter, env.filter);
-        // What differs from the exact sum is the lobe cut and float weights (the lobe cubes'
+        // What differs from the exact sum is the lobe cut and float weights (the stack entries'
         // bound before the stack: 0.5 % relative RMS, 0.1 % in the mean).
         const LevelError e = compareCubes(*lobe.cube, referenceConvolution(*env.base, lobe.exponent, lobe.cube->size()));
         EXPECT_LE(e.relRms, 0.005);
         EXPECT_LE(std::fabs(e.meanRelDiff), 0.001);
     }
     PreparedEnvironment none;
-    EXPECT_THROW(makeLobeCube(none, 20), std::logic_error);
-    EXPECT_THROW(makeLobeCube(env, 0), std::out_of_range) << "entry 0 would be the mirror";
-    EXPECT_THROW(makeLobeCube(env, kStackLast + 1), std::out_of_range);
+    EXPECT_THROW(makeStackEntry(none, 20), std::logic_error);
+    EXPECT_THROW(makeStackEntry(env, 0), std::out_of_range) << "entry 0 would be the mirror";
+    EXPECT_THROW(makeStackEntry(env, kStackLast + 1), std::out_of_range);
 }
 
 TEST(LobeStack, AtlasHoldsEveryFaceOnceInsideItsBounds) {
     std::vector<std::pair<int, int>> sizes;
-    for (int j = 11; j <= kStackLast; ++j) sizes.emplace_back(j, lobeCubeSize(stackExponent(j), 256));
+    for (int j = 11; j <= kStackLast; ++j) sizes.emplace_back(j, stackEntryFaceSize(stackExponent(j), 256));
     const LobeStackAtlas atlas = lobeStackAtlas(sizes, 2048);
     ASSERT_EQ(atlas.placed.size(), sizes.size());
     struct Rect { int x0, y0, x1, y1; };

@@ -23,22 +23,22 @@ Material material(float lambda, LookupMode mode = LookupMode::Reflect) {
 
 }  // namespace
 
-TEST(LookupPlan, MirrorReadsTheMirrorTextureAtLevelZeroWithNoLobeCube) {
+TEST(LookupPlan, MirrorReadsTheMirrorTextureAtLevelZeroWithNoStackEntry) {
     const ObjectLookup plan = planLookup(material(0.0f), true, kFace);
     EXPECT_EQ(plan.lookup, ShaderLookup::Reflect);
     EXPECT_TRUE(plan.mirror);
-    EXPECT_FALSE(plan.wantsLobeCube);
+    EXPECT_FALSE(plan.readsLobeStack);
     EXPECT_FALSE(plan.readsChainForLobe());
     EXPECT_EQ(plan.minLevel, 0.0f);
     EXPECT_EQ(plan.exponent, lambdaToExponent(0.0));
 }
 
-TEST(LookupPlan, GlossyReadsItsLobeCubeAndTheChainLevelOfItsExponentMeanwhile) {
+TEST(LookupPlan, GlossyReadsItsStackEntryAndTheChainLevelOfItsExponentMeanwhile) {
     for (const LookupMode mode : {LookupMode::Reflect, LookupMode::Normal}) {
         const ObjectLookup plan = planLookup(material(3.5f, mode), false, kFace);
         EXPECT_EQ(plan.lookup, mode == LookupMode::Reflect ? ShaderLookup::Reflect : ShaderLookup::Normal);
         EXPECT_FALSE(plan.mirror);
-        EXPECT_TRUE(plan.wantsLobeCube);
+        EXPECT_TRUE(plan.readsLobeStack);
         EXPECT_TRUE(plan.readsChainForLobe());
         EXPECT_EQ(plan.exponent, lambdaToExponent(3.5));
         EXPECT_FLOAT_EQ(plan.minLevel, static_cast<float>(chainLevelForExponent(lambdaToExponent(3.5), kFace)));
@@ -51,13 +51,13 @@ TEST(LookupPlan, IrradianceIsReadByTheNormalOnlyOnceItsMapIsReady) {
     m.useIrradiance = true;
     const ObjectLookup ready = planLookup(m, true, kFace);
     EXPECT_EQ(ready.lookup, ShaderLookup::Irradiance);
-    EXPECT_FALSE(ready.wantsLobeCube);
+    EXPECT_FALSE(ready.readsLobeStack);
     EXPECT_FALSE(ready.mirror);
     EXPECT_FALSE(ready.readsChainForLobe());
     // Until it is, the chain at λ stands in, as for any glossy normal lookup.
     const ObjectLookup waiting = planLookup(m, false, kFace);
     EXPECT_EQ(waiting.lookup, ShaderLookup::Normal);
-    EXPECT_TRUE(waiting.wantsLobeCube);
+    EXPECT_TRUE(waiting.readsLobeStack);
     // The irradiance map never applies to a reflection.
     m.mode = LookupMode::Reflect;
     EXPECT_EQ(planLookup(m, true, kFace).lookup, ShaderLookup::Reflect);
@@ -68,7 +68,7 @@ TEST(LookupPlan, SharperAtGrazingReadsEachFragmentsLobeFromTheStackOrItsOwnChain
     m.sharperAtGrazing = true;
     const ObjectLookup plan = planLookup(m, true, kFace);
     EXPECT_TRUE(plan.sharperAtGrazing);
-    EXPECT_TRUE(plan.wantsLobeCube) << "the lobe stack holds every fragment's own lobe";
+    EXPECT_TRUE(plan.readsLobeStack) << "the lobe stack holds every fragment's own lobe";
     EXPECT_EQ(plan.minLevel, 0.0f);
     EXPECT_EQ(plan.lambda, 4.0f);
     // Not for the irradiance map, which has no levels to pick.
@@ -82,7 +82,7 @@ TEST(LookupPlan, AnInvalidLambdaIsDrawnAsAMirror) {
         const ObjectLookup plan = planLookup(material(bad), true, kFace);
         EXPECT_EQ(plan.lambda, 0.0f) << bad;
         EXPECT_TRUE(plan.mirror) << bad;
-        EXPECT_FALSE(plan.wantsLobeCube) << bad;
+        EXPECT_FALSE(plan.readsLobeStack) << bad;
     }
 }
 
@@ -92,14 +92,14 @@ TEST(LookupPlan, TheBackgroundIsPlannedAsAReflectMaterialOfItsBlur) {
         const ObjectLookup object = planLookup(material(lambda), true, kFace);
         EXPECT_EQ(background.lookup, ShaderLookup::Reflect) << lambda;
         EXPECT_EQ(background.mirror, lambda == 0.0f) << lambda;
-        EXPECT_EQ(background.wantsLobeCube, lambda > 0.0f) << lambda;
+        EXPECT_EQ(background.readsLobeStack, lambda > 0.0f) << lambda;
         EXPECT_EQ(background.minLevel, object.minLevel) << lambda;
         EXPECT_FLOAT_EQ(background.minLevel,
                         lambda > 0.0f ? static_cast<float>(chainLevelForExponent(lambdaToExponent(lambda), kFace)) : 0.0f);
     }
     const ObjectLookup nan = planBackground(std::numeric_limits<float>::quiet_NaN(), kFace);
     EXPECT_EQ(nan.minLevel, 0.0f);
-    EXPECT_FALSE(nan.wantsLobeCube);
+    EXPECT_FALSE(nan.readsLobeStack);
 }
 
 TEST(LookupPlan, ShaderDefinesNameEveryEnumValueTheShadersCompare) {

@@ -1,4 +1,4 @@
-// Issue 24, item 6: the import, every chain level, the irradiance map and every lobe cube keep a
+// Issue 24, item 6: the import, every chain level, the irradiance map and every stack entry keep a
 // one-pixel sun of 1e9 (its energy within 1 %), and a map scaled by 1e-30 is the map at its own
 // scale times 1e-30. Through the whole import: a float EXR written from a held-out HDRI.
 #include "mipgloss/ibl/phong.h"
@@ -38,13 +38,13 @@ std::vector<std::pair<std::string, CubeMap>> cubesOf(const PreparedEnvironment& 
     cubes.emplace_back("irradiance", *env.irradiance);
     for (double n : {8.0, 64.0, 1024.0, 4096.0}) {
         // The lobe stack's entry nearest to n.
-        const LobeCube lobe = makeLobeCube(env, static_cast<int>(std::lround(exponentToLambda(n) * kStackStepsPerLevel)));
+        const LobeStackEntry lobe = makeStackEntry(env, static_cast<int>(std::lround(exponentToLambda(n) * kStackStepsPerLevel)));
         cubes.emplace_back("stack entry n " + std::to_string(static_cast<int>(lobe.exponent)), *lobe.cube);
     }
     return cubes;
 }
 
-TEST(RadianceRange, SunOf1e9KeepsItsEnergyInEveryLevelAndLobeCube) {
+TEST(RadianceRange, SunOf1e9KeepsItsEnergyInEveryLevelAndStackEntry) {
     MIPGLOSS_REQUIRE_ASSET(test::rangeMapAsset());
     test::TempDir dir;
     constexpr float kSun = 1e9f;

@@ -167,7 +167,7 @@ TEST(Lobes, TheSameLambdaShowsTheSameLobeAtAnyFaceSize) {
     PreparedEnvironment small, large;
     small.filter = std::make_shared<const PhongFilter>(loadDefaultEnvironment(128).cube);
     large.filter = std::make_shared<const PhongFilter>(loadDefaultEnvironment(512).cube);
-    const LobeCube a = makeLobeCube(small, 4 * kStackStepsPerLevel), b = makeLobeCube(large, 4 * kStackStepsPerLevel);
+    const LobeStackEntry a = makeStackEntry(small, 4 * kStackStepsPerLevel), b = makeStackEntry(large, 4 * kStackStepsPerLevel);
     EXPECT_EQ(a.exponent, 191.0);
     EXPECT_EQ(a.cube->size(), 79);
     EXPECT_EQ(b.cube->size(), 79);

@@ -125,7 +125,7 @@ TEST_P(LayeredPicture, ExactPixelsAreTheWeightedSumOfTheirLayersExactLobes) {
     }
 }
 
-// Lobes a lobe cube holds at full width (√(32 n) within its size cap, builders.h), so pixels can be
+// Lobes a stack entry holds at full width (√(32 n) within its size cap, builders.h), so pixels can be
 // exact: a coat of roughness 0.25 (n = 94), not a car paint's near-mirror coat.
 INSTANTIATE_TEST_SUITE_P(
     Materials, LayeredPicture,

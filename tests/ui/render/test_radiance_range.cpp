@@ -1,6 +1,6 @@
 // Issue 24, item 6: the picture does not depend on the environment's absolute scale. A held-out
 // HDRI (tests/radiance_range.h) with a one-pixel sun of 1e9 keeps the sun's energy in the picture
-// (mirror, glossy n = 1024 from its lobe cube, diffuse from the irradiance map) within 1 %, and
+// (mirror, glossy n = 1024 from its stack entry, diffuse from the irradiance map) within 1 %, and
 // the map scaled by 1e-30 renders, after an exposure of log2(1e30), as the map at its own scale.
 // Before float storage the uploads and picture targets were half floats: the sun clamped at 65504
 // and a map at 1e-30 was black.
@@ -166,9 +166,9 @@ TEST(RadianceRange, MapAt1em30RendersAsTheMapAtItsOwnScaleAfterExposure) {
     camera.yawDegrees = 30.0f;
     camera.pitchDegrees = 20.0f;
     camera.frame(sceneBounds(scene), 1.0f);
-    renderer->setLobes(makeLobeCubes(*environment(own), scene));
+    renderer->setLobes(makeStackEntries(*environment(own), scene));
     const QImage a = renderer->render(scene, camera, environment(own), kPixels, kPixels);
-    renderer->setLobes(makeLobeCubes(*environment(tiny), scene));
+    renderer->setLobes(makeStackEntries(*environment(tiny), scene));
     scene.display.exposureEv = static_cast<float>(std::log2(1e30));
     const QImage b = renderer->render(scene, camera, environment(tiny), kPixels, kPixels);
     int worst = 0;

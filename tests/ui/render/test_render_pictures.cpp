@@ -90,7 +90,7 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
 
 // Diffuse in the picture against the truth: a normal-mode sphere's pixels against the exact
 // normalized Phong convolution of the environment at the pixel's normal, for the chain read while
-// λ moves (no lobe cube bound: two levels blended, mean-cosine matched) and for the irradiance map
+// λ moves (no stack entry bound: two levels blended, mean-cosine matched) and for the irradiance map
 // (exact E/π = the n = 1 lobe). The settled picture's accuracy is SettledPicture's; this asserts
 // the irradiance map against its accuracy bound, each chain read against an upper bound above
 // what it measures (a regression guard for the drag preview, not an accuracy claim), and that the
@@ -214,7 +214,7 @@ TEST(GrazingOption, SharpensTheRimAndLeavesTheCentre) {
         const Scene scene = test::sphereScene(material);
         camera.frame(sceneBounds(scene), 1.0f);
         // As `mipgloss render` draws it: every lobe from the lobe stack, each fragment's own.
-        renderer->setLobes(makeLobeCubes(*env, scene));
+        renderer->setLobes(makeStackEntries(*env, scene));
         const QImage picture = renderer->render(scene, camera, env, w, h);
         picture.save(QString::fromStdString((test::outputDir() / (grazing ? "grazing_on.png" : "grazing_off.png")).string()));
         int rw = 0, rh = 0;
@@ -262,7 +262,7 @@ struct SeamMeasure {
     double ratio() const { return stepAcross / stepInside; }
 };
 
-// `settled`: the material's lobe cube is made and bound first (the settled picture); otherwise the
+// `settled`: the material's stack entry is made and bound first (the settled picture); otherwise the
 // chain is read at the level standing in for the lobe (the picture while λ moves).
 SeamMeasure seamsOfDiffuseSphere(Builder builder, float lambda, QImage* picture, bool settled = false) {
     ui::OffscreenRenderer* renderer = test::sharedRenderer();
@@ -275,7 +275,7 @@ SeamMeasure seamsOfDiffuseSphere(Builder builder, float lambda, QImage* picture,
     const auto env = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
     const int w = 384, h = 384;
-    renderer->setLobes(settled ? makeLobeCubes(*env, scene) : std::vector<std::shared_ptr<const LobeCube>>{});
+    renderer->setLobes(settled ? makeStackEntries(*env, scene) : std::vector<std::shared_ptr<const LobeStackEntry>>{});
     OrbitCamera camera;
     camera.yawDegrees = 35.0f;  // three faces and their shared edges in view
     camera.pitchDegrees = 30.0f;
@@ -322,7 +322,7 @@ TEST(SeamPicture, DiffuseSphereShowsNoCubeEdges) {
     ASSERT_NE(test::sharedRenderer(&error), nullptr) << error;
     const auto dir = test::outputDir();
     // The λ of the paper's diffuse regime, looked up by the normal, through the chain (while λ
-    // moves), through the lobe cube (settled), and through the box chain (what the paper does).
+    // moves), through the stack entry (settled), and through the box chain (what the paper does).
     for (const float lambda : {4.0f, 5.0f, 6.0f, 7.0f}) {
         QImage boxPicture, chainPicture, settledPicture;
         const SeamMeasure box = seamsOfDiffuseSphere(Builder::Box, lambda, &boxPicture);

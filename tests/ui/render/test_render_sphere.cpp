@@ -1,5 +1,5 @@
 // The renderer against the CPU: a unit sphere drawn by OpenGL at λ = 0, 5, 5.5, 6 and in normal
-// mode (λ 6 and the irradiance map), with no lobe cube bound (the picture while λ moves), must
+// mode (λ 6 and the irradiance map), with no stack entry bound (the picture while λ moves), must
 // match, pixel by pixel, the same lookup evaluated on the core's chain (same direction, the chain
 // level chainLevelForExponent gives for the material's lobe). This checks the whole GPU path: upload orientation, face order, GL_TEXTURE_MIN_LOD from
 // the sampler, trilinear blending, seamless filtering, the lookup vectors and the readback.
@@ -68,7 +68,7 @@ TEST_P(RenderSphere, MatchesCpuLookupOnTheChain) {
     const glm::vec3 eye = camera.position();
     const MipChain& chain = *env->chain;
     const int faceSize = chain.baseSize();
-    // The chain level the renderer reads for this material's lobe while no lobe cube is bound.
+    // The chain level the renderer reads for this material's lobe while no stack entry is bound.
     const float level = static_cast<float>(chainLevelForExponent(lambdaToExponent(param.lambda), faceSize));
 
     // Lookup direction per pixel (nullopt off the sphere).

@@ -114,7 +114,7 @@ TEST(EnvironmentEarly, ImportIsCurrentBeforeItsChain) {
     EXPECT_EQ(early->settings.source, sunset.source);
     EXPECT_EQ(early->base->size(), 1024);
     EXPECT_NE(early->base, previous->base);
-    EXPECT_FALSE(early->filter) << "no lobe cube can be made from the early environment";
+    EXPECT_FALSE(early->filter) << "no stack entry can be made from the early environment";
     EXPECT_FALSE(early->irradiance);
     EXPECT_TRUE(full->complete());
     EXPECT_EQ(full->base, early->base) << "the complete environment keeps the early one's import";
@@ -300,7 +300,7 @@ TEST(EnvironmentEarly, FailingFileLeavesThePreviousCurrent) {
     }
 }
 
-// Lobe cubes (lobes.h) are made from the complete environment only: the early one has no filter,
+// Stack entries (lobes.h) are made from the complete environment only: the early one has no filter,
 // and none is made while it is current.
 TEST(EnvironmentEarly, LobeStackEntriesComeFromTheCompleteEnvironmentOnly) {
     Scene scene;

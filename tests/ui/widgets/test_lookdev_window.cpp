@@ -58,7 +58,7 @@ bool environmentIdle(MainWindow& w) {
 ::testing::AssertionResult settledFrame(MainWindow& w) {
     if (!waitUntil([&] { return environmentIdle(w); }, kEnvironmentTimeoutMs))
         return ::testing::AssertionFailure() << "environment not ready within " << kEnvironmentTimeoutMs << " ms";
-    // Lobe cubes come kSettleMs after the last change: wait that out, then until idle again.
+    // Stack entries come kSettleMs after the last change: wait that out, then until idle again.
     QTest::qWait(400);
     if (!waitUntil([&] { return environmentIdle(w); }, kEnvironmentTimeoutMs))
         return ::testing::AssertionFailure() << "lobes not ready";

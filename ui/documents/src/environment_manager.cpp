@@ -37,8 +37,8 @@ EnvironmentManager::~EnvironmentManager() {
     delete worker_;
 }
 
-std::vector<std::shared_ptr<const LobeCube>> EnvironmentManager::lobes() const {
-    std::vector<std::shared_ptr<const LobeCube>> out;
+std::vector<std::shared_ptr<const LobeStackEntry>> EnvironmentManager::lobes() const {
+    std::vector<std::shared_ptr<const LobeStackEntry>> out;
     for (const auto& [key, lobe] : lobes_) out.push_back(lobe);
     return out;
 }
@@ -92,23 +92,23 @@ void EnvironmentManager::startLobeJob() {
     const std::shared_ptr<const PreparedEnvironment> environment = current_;
     lobeJob_ = worker_->start(
         [environment, missing](Job& job) {
-            std::vector<std::shared_ptr<const LobeCube>> made;
+            std::vector<std::shared_ptr<const LobeStackEntry>> made;
             try {
                 for (int index : missing) {
                     if (job.cancelled()) break;
-                    made.push_back(std::make_shared<const LobeCube>(makeLobeCube(*environment, index)));
+                    made.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(*environment, index)));
                 }
             } catch (const std::exception& e) {
                 std::cerr << "mipgloss: lobe stack entry: " << e.what() << '\n';
             }
             return made;
         },
-        [this, forInUse](JobOutcome<std::vector<std::shared_ptr<const LobeCube>>>&& outcome, const Job& job) {
+        [this, forInUse](JobOutcome<std::vector<std::shared_ptr<const LobeStackEntry>>>&& outcome, const Job& job) {
             if (forInUse) lobeBusy_ = false;
             if (lobeJob_.get() == &job) lobeJob_.reset();
             // Only lobes of the environment still current are kept.
             bool changed = false;
-            for (const auto& lobe : outcome.value.value_or(std::vector<std::shared_ptr<const LobeCube>>{}))
+            for (const auto& lobe : outcome.value.value_or(std::vector<std::shared_ptr<const LobeStackEntry>>{}))
                 if (current_ && lobe->filter == current_->filter) {
                     lobes_[lobe->index] = lobe;
                     ++counters_.lobeBuilds;

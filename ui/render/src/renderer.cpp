@@ -91,7 +91,7 @@ struct Renderer::Impl {
 
     // The lobe stack (lobes.h): its entries on the GPU, packed in one 2D atlas (lobeStackAtlas),
     // and the table the shaders find them by (lobe_stack.glsl).
-    std::map<int, std::shared_ptr<const LobeCube>> stackEntries;  // index -> entry
+    std::map<int, std::shared_ptr<const LobeStackEntry>> stackEntries;  // index -> entry
     GLuint stackTexture = 0;
     std::array<glm::vec4, kStackSlots> stackTable{};  // block x, y, face size, 1 when present
     std::array<float, kStackSlots> stackExponents{};
@@ -357,10 +357,10 @@ struct Renderer::Impl {
             plan.specular.minLevel = 0.0f;
         }
         const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-        const bool specular = plan.specular.wantsLobeCube &&
+        const bool specular = plan.specular.readsLobeStack &&
                               (roughnessMapped ? stackCurrent() : stackServes(plan.specular.exponent));
-        const bool coat = plan.hasCoat && plan.coat.wantsLobeCube && stackServes(plan.coat.exponent);
-        const bool diffuse = !diffuseIrradiance && plan.diffuse.wantsLobeCube && stackServes(plan.diffuse.exponent);
+        const bool coat = plan.hasCoat && plan.coat.readsLobeStack && stackServes(plan.coat.exponent);
+        const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
         auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
         auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
         gl->glUniform3fv(u.f0, 1, glm::value_ptr(specularF0(m.layers)));
@@ -434,7 +434,7 @@ struct Renderer::Impl {
                 read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady);
             } else {
                 const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
-                const bool stack = plan.wantsLobeCube && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));
+                const bool stack = plan.readsLobeStack && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));
                 gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
                 gl->glUniform1i(locLookup, static_cast<int>(plan.lookup));
                 gl->glUniform1i(locGrazing, plan.sharperAtGrazing ? 1 : 0);
@@ -445,7 +445,7 @@ struct Renderer::Impl {
                 // level standing in for the material's lobe where the stack does not hold it; a
                 // mirror reads the mirror texture.
                 bindChain(plan, 0);
-                read.settled = plan.wantsLobeCube && !plan.sharperAtGrazing && stackHolds(plan.exponent);
+                read.settled = plan.readsLobeStack && !plan.sharperAtGrazing && stackHolds(plan.exponent);
                 read.fromChain = !read.settled && plan.readsChainForLobe();
             }
             gl->glBindVertexArray(mesh.vao);
@@ -930,7 +930,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
                                    glm::value_ptr(envRotation));
             const ObjectLookup plan = planBackground(scene.display.backgroundLambda, d.environmentFaceSize);
             gl->glUniform1f(bg.uniformLocation("uLod"), plan.minLevel);
-            gl->glUniform1i(bg.uniformLocation("uUseStack"), plan.wantsLobeCube && d.stackServes(plan.exponent) ? 1 : 0);
+            gl->glUniform1i(bg.uniformLocation("uUseStack"), plan.readsLobeStack && d.stackServes(plan.exponent) ? 1 : 0);
             gl->glUniform1f(bg.uniformLocation("uExponent"), static_cast<float>(plan.exponent));
             d.bindStack(bg);
             gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
@@ -984,10 +984,10 @@ void Renderer::setTransparentBackground(bool transparent) { impl_->transparentBa
 
 void Renderer::setHighlightedObject(int index) { impl_->highlighted = index; }
 
-void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes) {
+void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes) {
     Impl& d = *impl_;
     if (!d.gl) return;
-    std::map<int, std::shared_ptr<const LobeCube>> wanted;
+    std::map<int, std::shared_ptr<const LobeStackEntry>> wanted;
     for (const auto& lobe : lobes)
         if (lobe && lobe->cube && lobe->index >= 1 && lobe->index <= kStackLast) wanted[lobe->index] = lobe;
     if (wanted == d.stackEntries) return;

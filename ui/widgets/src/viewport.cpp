@@ -458,7 +458,7 @@ Scene Viewport::comparedScene(const Scene& shown) const {
 void Viewport::syncComparison() {
     if (!compareDocument_) return;
     // The shadow follows the scene; its environment manager asks for what it needs (a change of
-    // λ or of the selection builds no chain, only lobe cubes).
+    // λ or of the selection builds no chain, only stack entries).
     Scene scene = comparedScene(document_->scene());
     if (scene == compareDocument_->scene()) return;
     compareDocument_->resetScene(std::move(scene));

@@ -106,14 +106,14 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// The face size of a lobe cube (a lobe stack entry): large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
+// The face size of a lobe stack entry: large enough that the lobe is σ ≈ 3.6 texels wide, so bilinear
 // reads between its centres stay within about 1 % (docs/chain-schedule.md), i.e. ceil(√(32 n)),
 // at least 16 (smooth enough that even the widest lobes show no texel structure; 32 below n = 1,
 // whose kernel is nearly a step at the horizon) and at most min(2N, 1024) for a base of size N: lobes sharper than that are held
 // more coarsely, and the stack stops below them (stackTop).
-int lobeCubeSize(double exponent, int baseSize);
-// True when lobeCubeSize holds the lobe at full width (√(32 n) fits under the cap).
-bool lobeCubeHoldsLobe(double exponent, int baseSize);
+int stackEntryFaceSize(double exponent, int baseSize);
+// True when stackEntryFaceSize holds the lobe at full width (√(32 n) fits under the cap).
+bool stackEntryHoldsLobe(double exponent, int baseSize);
 
 // Exact discrete normalized Phong convolution of `base` with exponent n, sampled at the texel
 // centres of a face of size `outSize` (double precision, lobe cut at `cutoff` of its peak).

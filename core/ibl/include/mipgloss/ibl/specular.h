@@ -3,7 +3,7 @@
 // docs/layered-materials.md).
 //
 // The layer the tables describe reflects, toward the viewer v, the environment through the
-// normalized Phong lobe about the reflection vector r (the lobe the chain and the lobe cubes hold,
+// normalized Phong lobe about the reflection vector r (the lobe the chain and the stack entries hold,
 // phong.h), with Schlick's Fresnel at the half vector and nothing from below the surface:
 //     S(v) = ∫ L(ω) · F(ω·h) · [N·ω > 0] · (n+1)/(2π) · max(0, r·ω)^n dω,   h = (ω + v)/|ω + v|,
 //     F(c) = F0 + (1 − F0)·(1 − c)^5 = F0·(1 − (1 − c)^5) + (1 − c)^5.

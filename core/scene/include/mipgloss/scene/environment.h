@@ -29,7 +29,7 @@ struct PreparedEnvironment {
     // ChainNeeds in scene.h).
     int lastFilteredLevel = -1;
     std::shared_ptr<const CubeMap> irradiance;  // null until some object needs it
-    // The default builder's energy pyramid of this import, for lobe cubes (lobes.h); null for
+    // The default builder's energy pyramid of this import, for stack entries (lobes.h); null for
     // the other builders.
     std::shared_ptr<const PhongFilter> filter;
     double importSeconds = 0.0, buildSeconds = 0.0, irradianceSeconds = 0.0;

@@ -45,7 +45,7 @@ struct LayerWeights {
 LayerWeights layerWeights(const Layers& layers, double cosView,
                           const SplitSumTable& table = SplitSumTable::shared());
 
-// Every λ a material reads (its lobes in use, for lobe cubes and the chain's depth): the single
+// Every λ a material reads (its lobes in use, for stack entries and the chain's depth): the single
 // lobe's λ; a layered material's specular λ, its coat's when it has one, and the diffuse λ unless
 // it reads the irradiance map.
 std::vector<double> lambdasOf(const Material& material);

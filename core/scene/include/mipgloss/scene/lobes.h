@@ -5,7 +5,7 @@
 // lobe on held-out maps where the chain's 4× steps are 10–58 % off (docs/lobe-stack.md). So any
 // λ, per object or per fragment, reads its own lobe the moment it changes, with no settle step.
 //
-// Each entry is a cube of face lobeCubeSize(n) (builders.h: σ ≈ 3.6 texels, so bilinear reads
+// Each entry is a cube of face stackEntryFaceSize(n) (builders.h: σ ≈ 3.6 texels, so bilinear reads
 // between its centres stay within about 1 %) and is read at its base level only: the renderer
 // packs the entries into one 2D atlas, each face with its one-texel border (lobeStackAtlas), and a
 // fragment whose footprint is wider than its lobe reads the wider lobe the footprint makes
@@ -36,7 +36,7 @@ inline constexpr int kStackSlots = kStackLast + 1;  // uniform array length in t
 double stackLambda(int index);    // index / 8
 double stackExponent(int index);  // lambdaToExponent(index / 8)
 // The sharpest entry a base of face N makes: the first whose lobe its cube holds at full width
-// (lobeCubeHoldsLobe: √(32 n) ≤ min(2N, 1024)). Lobes sharper than it (and the mirror) are read
+// (stackEntryHoldsLobe: √(32 n) ≤ min(2N, 1024)). Lobes sharper than it (and the mirror) are read
 // from the chain.
 int stackTop(int baseSize);
 
@@ -56,7 +56,7 @@ std::optional<StackBlend> stackBlend(double exponent, int baseSize);
 // (|dx|² + |dy|²)/12 and 1 − cos θ ≈ θ²/2), n' = 1/u − 2. The same formula is in lobe_stack.glsl.
 double footprintExponent(double exponent, double dx, double dy);
 
-struct LobeCube {
+struct LobeStackEntry {
     int index = 0;            // the stack entry (λ = index / 8)
     double exponent = 0.0;    // the lobe it holds, stackExponent(index)
     std::shared_ptr<const CubeMap> cube;
@@ -92,16 +92,16 @@ std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reac
 
 // Entry `index` from the environment's filter. The environment must have been prepared with the
 // default builder (filter set). Throws Cancelled if asked.
-LobeCube makeLobeCube(const PreparedEnvironment& environment, int index);
+LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index);
 
 // Every entry the scene shows (lobesInUse), made now, for `mipgloss render` and the tests (the
 // window makes them on its worker). Empty when the environment has no filter.
-std::vector<std::shared_ptr<const LobeCube>> makeLobeCubes(const PreparedEnvironment& environment, const Scene& scene);
+std::vector<std::shared_ptr<const LobeStackEntry>> makeStackEntries(const PreparedEnvironment& environment, const Scene& scene);
 
 // Lobe n at `direction` as the renderer reads it from these entries: each entry bilinear between
 // its face's texel centres (CubeMap::sample), the neighbours blended by stackBlend. The CPU twin
 // of lobe_stack.glsl's stackRead, for tests and the bench; empty when an entry it needs is missing.
-std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeCube>>& entries, double exponent,
+std::optional<Rgb> readLobeStack(const std::map<int, std::shared_ptr<const LobeStackEntry>>& entries, double exponent,
                                  int baseSize, const glm::vec3& direction);
 
 // Where the renderer's 2D atlas holds each entry: a block of 3 × 2 faces, each face (size + 2)²

@@ -22,7 +22,7 @@ struct ObjectLookup {
     float lambda = 0.0f;            // the material's λ; 0 (a mirror) when it is not a valid λ
     double exponent = 1.0;          // its Phong exponent n(λ) (phong.h)
     bool sharperAtGrazing = false;  // λ per fragment from the view angle (object.frag)
-    bool wantsLobeCube = false;     // read the lobe stack where it holds the lobe (lobes.h)
+    bool readsLobeStack = false;     // read the lobe stack where it holds the lobe (lobes.h)
     bool mirror = false;            // read the mirror texture (λ = 0)
     // The sampler's GL_TEXTURE_MIN_LOD on the chain: the chain level standing in for the lobe
     // (phong.h, chainLevelForExponent); 0 for a mirror and for the per-fragment λ, whose shader

@@ -64,7 +64,7 @@ public:
 
     // The environment to draw with; null until the first one is ready. Every new chain or
     // irradiance map comes as a new object, so the renderer uploads only when the pointer changes.
-    // May be an early one (complete() false) while its chain is built; lobe cubes are never made
+    // May be an early one (complete() false) while its chain is built; stack entries are never made
     // from that (it has no filter).
     std::shared_ptr<const PreparedEnvironment> current() const { return current_; }
 
@@ -73,7 +73,7 @@ public:
     bool makingLobes() const { return lobeJob_ != nullptr; }
 
     // The lobe stack's entries made for the current environment (those in use and near them).
-    std::vector<std::shared_ptr<const LobeCube>> lobes() const;
+    std::vector<std::shared_ptr<const LobeStackEntry>> lobes() const;
     // How long λ must rest before the stack entries it needs are made.
     static constexpr int kSettleMs = 150;
 
@@ -127,8 +127,8 @@ private:
     // Last request that failed, so the same bad file is not retried on every scene change.
     EnvironmentSettings failedSettings_;
     bool haveFailed_ = false;
-    // Lobe cubes of current_ by key (each knows its environment's filter; others are dropped).
-    std::map<int, std::shared_ptr<const LobeCube>> lobes_;
+    // Stack entries of current_ by key (each knows its environment's filter; others are dropped).
+    std::map<int, std::shared_ptr<const LobeStackEntry>> lobes_;
     bool lobeBusy_ = false;
     bool lobesWanted_ = false;
     std::shared_ptr<Job> lobeJob_;

@@ -26,7 +26,7 @@ public:
                   const std::shared_ptr<const PreparedEnvironment>& environment, int width, int height);
 
     // The lobe stack's entries later renders read lobes from (Renderer::setLobes).
-    void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
+    void setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes);
     // The object later renders outline (Renderer::setHighlightedObject); -1 by default.
     void setHighlightedObject(int index);
 

@@ -106,7 +106,7 @@ public:
     // The lobe stack's entries (lobes.h): replaces the previous set (the atlas is packed and sent
     // again when the set changes). Entries made from another environment than the current one
     // are not read.
-    void setLobes(const std::vector<std::shared_ptr<const LobeCube>>& lobes);
+    void setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes);
 
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.
     void render(const Scene& scene, const OrbitCamera& camera, int width, int height,
