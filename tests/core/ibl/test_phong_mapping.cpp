@@ -27,7 +27,7 @@ double analyticExponent(double lambda) { return std::max(0.0, 3.0 * 128.0 * 128.
 double meanCosine(double n) { return std::isinf(n) ? 1.0 : (n + 1.0) / (n + 2.0); }
 }  // namespace
 
-TEST(LambdaMapping, KnownValues) {
+TEST(LambdaMapping, MatchesTheSolidAngleFormulaAndMirrorsAtZero) {
     EXPECT_DOUBLE_EQ(lambdaToExponent(1.0), 3.0 * 128 * 128 / 4.0 - 1.0);  // 12287
     EXPECT_DOUBLE_EQ(lambdaToExponent(2.0), 3071.0);
     EXPECT_DOUBLE_EQ(lambdaToExponent(3.5), 383.0);
@@ -49,7 +49,7 @@ TEST(LambdaMapping, KnownValues) {
     }
 }
 
-TEST(LambdaMapping, ExponentToLambdaKnownValues) {
+TEST(LambdaMapping, ExponentToLambdaInvertsTheFormula) {
     EXPECT_EQ(exponentToLambda(kInf), 0.0) << "the mirror";
     EXPECT_DOUBLE_EQ(exponentToLambda(12287.0), 1.0);
     EXPECT_DOUBLE_EQ(exponentToLambda(2.0), 7.0);
@@ -91,7 +91,7 @@ TEST(LambdaMapping, NaNPropagates) {
     EXPECT_TRUE(std::isnan(legacyLambdaToExponent(kNaN, 128)));
 }
 
-TEST(LambdaMapping, Validation) {
+TEST(LambdaMapping, ValidLambdasAreFiniteWithinZeroToMax) {
     EXPECT_TRUE(isValidLambda(0.0));
     EXPECT_TRUE(isValidLambda(3.5));
     EXPECT_TRUE(isValidLambda(kMaxLambda));
@@ -138,7 +138,7 @@ void expectSchedule(int baseSize, const std::vector<double>& readExponents) {
 }
 }  // namespace
 
-TEST(Schedule, KnownSchedules) {
+TEST(Schedule, LevelExponentsFollowTheFaceSizesDownToEight) {
     expectSchedule(128, {128.0, 32.0, 8.0, 1.0});                  // faces 64, 32, 16, then 8
     expectSchedule(512, {2048.0, 512.0, 128.0, 32.0, 8.0, 1.0});  // faces 256 ... 16, then 8
     expectSchedule(96, {72.0, 18.0, 1.0});                         // 48²/32, 24²/32, then 12

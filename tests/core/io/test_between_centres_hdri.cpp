@@ -35,9 +35,9 @@ void expectReadsBetweenCentres(const std::string& map, int size) {
 
 }  // namespace
 
-TEST(RealHdriBetweenCentres, EveryMapAtBase128) {
+TEST(RealHdriBetweenCentres, EveryMapAtBase128ReadsWithinTwoPercentOfItsLobes) {
     for (const char* map : {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"})
         expectReadsBetweenCentres(map, 128);
 }
 
-TEST(RealHdriBetweenCentres, SunriseAtBase256) { expectReadsBetweenCentres("sunrise", 256); }
+TEST(RealHdriBetweenCentres, SunAtBase256ReadsWithinTwoPercentOfItsLobes) { expectReadsBetweenCentres("sunrise", 256); }

@@ -596,7 +596,7 @@ TEST(ImportErrors, FacesOfDifferentSizesNameBothFiles) {
     expectEnvError(dir / "px.exr", {}, dir / "pz.exr", (dir / "px.exr").string() + " is 4x4");
 }
 
-TEST(ImportErrors, NonSquareFace) {
+TEST(ImportErrors, NonSquareFaceIsRefusedNamingItsSize) {
     TempDir dir;
     for (const char* name : {"px", "nx", "py", "ny", "pz", "nz"})
         writeFloatRgb(dir / (std::string(name) + ".exr"), 4, 5, std::vector<Rgb>(20, Rgb(1.0f)));
@@ -614,7 +614,7 @@ TEST(ImportErrors, CrossWithWrongProportions) {
     expectEnvError(dir / "odd.exr", {}, dir / "odd.exr", "accepted proportions");
 }
 
-TEST(ImportErrors, TruncatedExr) {
+TEST(ImportErrors, TruncatedExrIsRefusedNamingTheFile) {
     TempDir dir;
     const fs::path file = dir / "truncated.exr";
     writeFloatRgb(file, 64, 32, latLongFromFunction(64, 32, [](const glm::dvec3& d) {
@@ -624,21 +624,21 @@ TEST(ImportErrors, TruncatedExr) {
     expectEnvError(file, {}, file, "");
 }
 
-TEST(ImportErrors, TextFileNamedPng) {
+TEST(ImportErrors, TextFileNamedPngIsNotAReadableImage) {
     TempDir dir;
     const fs::path file = dir / "notes.png";
     std::ofstream(file) << "this is not an image\n";
     expectEnvError(file, {}, file, "not a readable image");
 }
 
-TEST(ImportErrors, ZeroByteFile) {
+TEST(ImportErrors, ZeroByteFileIsCalledEmpty) {
     TempDir dir;
     const fs::path file = dir / "empty.exr";
     std::ofstream{file};
     expectEnvError(file, {}, file, "empty");
 }
 
-TEST(ImportErrors, MissingPath) {
+TEST(ImportErrors, MissingPathIsNotFound) {
     TempDir dir;
     expectEnvError(dir / "nowhere.hdr", {}, dir / "nowhere.hdr", "not found");
 }
