@@ -37,6 +37,20 @@ FileKind fileKindOf(const QString& path) {
     return FileKind::Unknown;
 }
 
+FilesByKind sortByKind(const QStringList& paths) {
+    FilesByKind sorted;
+    for (const QString& path : paths) {
+        switch (fileKindOf(path)) {
+            case FileKind::Scene: if (sorted.scene.isEmpty()) sorted.scene = path; break;
+            case FileKind::Library: sorted.libraries << path; break;
+            case FileKind::Mesh: sorted.meshes << path; break;
+            case FileKind::Environment: sorted.environment = path; break;
+            case FileKind::Unknown: sorted.unknown << path; break;
+        }
+    }
+    return sorted;
+}
+
 QString dialogPatternsOf(FileKind kind) {
     QStringList patterns;
     for (const QString& suffix : suffixesOf(kind)) patterns << QStringLiteral("*.") + suffix;

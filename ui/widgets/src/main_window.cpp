@@ -1,64 +1,48 @@
 #include "mipgloss/ui/main_window.h"
 
-#include "mipgloss/scene/asset.h"
-
-#include "mipgloss/ibl/builders.h"
-#include "mipgloss/scene/mesh.h"
-#include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/environment_panel.h"
+#include "mipgloss/ui/file_kinds.h"
 #include "mipgloss/ui/library_dock.h"
 #include "mipgloss/ui/library_document.h"
-#include "mipgloss/ui/file_kinds.h"
 #include "mipgloss/ui/library_file.h"
 #include "mipgloss/ui/material_panel.h"
 #include "mipgloss/ui/scene_document.h"
-#include "mipgloss/ui/scene_file.h"
-#include "mipgloss/ui/scene_list_delegate.h"
-#include "mipgloss/ui/scene_list_model.h"
 #include "mipgloss/ui/view_dialogs.h"
 #include "mipgloss/ui/view_toolbar.h"
 #include "mipgloss/ui/viewport.h"
-#include "mipgloss/io/image_file.h"
 
-#include "elided_label.h"
+#include "environment_requests.h"
 #include "field_undo_keys.h"
+#include "image_export.h"
+#include "recent_files_menu.h"
+#include "scene_list_panel.h"
+#include "status_indicators.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
-#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QHBoxLayout>
-#include <QImage>
-#include <QLabel>
-#include <QLineEdit>
 #include <QListView>
-#include <QLocale>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QOpenGLContext>
-#include <QProgressBar>
-#include <QScrollArea>
-#include <QScrollBar>
-#include <QScreen>
-#include <QSettings>
 #include <QPushButton>
+#include <QScreen>
+#include <QScrollArea>
+#include <QSettings>
 #include <QStatusBar>
 #include <QStyle>
-#include <QTimer>
-#include <QToolButton>
 #include <QUndoStack>
 #include <QUrl>
 #include <QVBoxLayout>
 
-#include <cmath>
-#include <iostream>
+#include <algorithm>
 
 namespace mipgloss::ui {
 
@@ -89,9 +73,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     createViewToolBar();
     setAcceptDrops(true);
 
-    connect(document_, &SceneDocument::environmentChanged, this, &MainWindow::refreshStatus);
-    connect(environments_, &EnvironmentManager::environmentReady, this, &MainWindow::refreshStatus);
-    connect(environments_, &EnvironmentManager::failed, this, &MainWindow::onEnvironmentFailed);
+    environmentRequests_ = new EnvironmentRequests(document_, environments_, messages_, this);
     connect(importer_, &MeshImporter::finished, this, &MainWindow::finishImport);
     connect(viewport_, &Viewport::objectClicked, document_, &SceneDocument::setSelected);
     connect(viewport_, &Viewport::glFailed, this, [this](const QString& message) {
@@ -99,7 +81,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     });
     connectSession();
 
-    refreshStatus();
     restoreLayout();
     session_->pruneRecentFiles();
 }
@@ -118,7 +99,6 @@ MainWindow::~MainWindow() {
     delete environments_;
     environments_ = nullptr;
     qDeleteAll(findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly));
-    delete sceneModel_;
     delete importer_;
     delete document_;
 }
@@ -158,14 +138,6 @@ void MainWindow::createActions() {
     openAction_ = make(tr("&Open scene…"), "openAction");
     openAction_->setShortcuts(QKeySequence::Open);
     connect(openAction_, &QAction::triggered, this, &MainWindow::openSceneDialog);
-    for (QAction*& recent : recentFileActions_) {
-        recent = make(QString(), "recentFileAction");
-        recent->setVisible(false);
-        connect(recent, &QAction::triggered, this,
-                [this, recent] { openRecentFile(recent->data().toString()); });
-    }
-    clearRecentAction_ = make(tr("&Clear list"), "clearRecentAction");
-    connect(clearRecentAction_, &QAction::triggered, session_, &SceneFileSession::clearRecentFiles);
     saveAction_ = make(tr("&Save scene"), "saveAction");
     saveAction_->setShortcuts(QKeySequence::Save);
     connect(saveAction_, &QAction::triggered, this, &MainWindow::save);
@@ -197,7 +169,7 @@ void MainWindow::createActions() {
     duplicateAction_->setShortcut(QKeySequence(tr("Ctrl+D")));
     connect(duplicateAction_, &QAction::triggered, this, &MainWindow::duplicateSelected);
     removeAction_ = make(tr("&Remove"), "removeAction");
-    // Delete removes only while the scene list has the focus (createSceneDock), never while typing
+    // Delete removes only while the scene list has the focus (SceneListPanel), never while typing
     // in a spin box.
     removeAction_->setShortcut(QKeySequence::Delete);
     removeAction_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
@@ -252,7 +224,9 @@ void MainWindow::createDocks() {
     // library and the environment as tabs below, so the view keeps the rest of the window.
     auto* sceneDock = new QDockWidget(tr("Scene"), this);
     sceneDock->setObjectName(QStringLiteral("sceneDock"));
-    sceneDock->setWidget(createSceneDock());
+    auto* scenePanel = new SceneListPanel(document_, {duplicateAction_, removeAction_, frameAllAction_}, sceneDock);
+    sceneList_ = scenePanel->list();
+    sceneDock->setWidget(scenePanel);
     addDockWidget(Qt::RightDockWidgetArea, sceneDock);
 
     auto* materialDock = new QDockWidget(tr("Material"), this);
@@ -295,57 +269,14 @@ void MainWindow::createDocks() {
     resizeDocks({sceneDock, materialDock}, {160, 600}, Qt::Vertical);
 }
 
-QWidget* MainWindow::createSceneDock() {
-    auto* panel = new QWidget(this);
-    auto* layout = new QVBoxLayout(panel);
-    sceneModel_ = new SceneListModel(document_, this);
-    sceneList_ = new QListView(panel);
-    sceneList_->setObjectName(QStringLiteral("sceneList"));
-    sceneList_->setModel(sceneModel_);
-    sceneList_->setItemDelegate(new SceneListDelegate(sceneList_));
-    sceneList_->setSelectionMode(QAbstractItemView::SingleSelection);
-    sceneList_->setContextMenuPolicy(Qt::ActionsContextMenu);
-    // Library materials dropped onto a row (SceneListModel::dropMimeData).
-    sceneList_->setDragDropMode(QAbstractItemView::DropOnly);
-    sceneList_->setDefaultDropAction(Qt::CopyAction);
-    sceneList_->setDropIndicatorShown(true);
-    layout->addWidget(sceneList_, 1);
-
-    // Selection, both ways. The model moves rows rather than resetting, and the document hands a
-    // removed object's selection on before removing it, so the list's selection never changes
-    // behind the document's back; each direction sets the other only when it differs, so the
-    // round trip ends there.
-    connect(sceneList_->selectionModel(), &QItemSelectionModel::selectionChanged, this, [this] {
-        const QModelIndexList rows = sceneList_->selectionModel()->selectedRows();
-        document_->setSelected(rows.isEmpty() ? -1 : rows.first().row());
-    });
-    connect(document_, &SceneDocument::selectionChanged, this, &MainWindow::showSelectionInList);
-
-    sceneList_->addActions({duplicateAction_, removeAction_, frameAllAction_});
-    auto* buttons = new QHBoxLayout;
-    for (QAction* action : {duplicateAction_, removeAction_, frameAllAction_}) {
-        auto* button = new QToolButton(panel);
-        button->setDefaultAction(action);
-        buttons->addWidget(button);
-    }
-    buttons->addStretch(1);
-    layout->addLayout(buttons);
-    showSelectionInList(document_->selected());
-    return panel;
-}
-
 void MainWindow::createMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     file->addAction(newEmptyAction_);
     file->addAction(newAction_);
     file->addAction(openAction_);
-    recentMenu_ = file->addMenu(tr("Open &recent"));
-    recentMenu_->setObjectName(QStringLiteral("recentMenu"));
-    for (QAction* recent : recentFileActions_) recentMenu_->addAction(recent);
-    recentMenu_->addSeparator();
-    recentMenu_->addAction(clearRecentAction_);
-    connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::updateRecentFileActions);
-    updateRecentFileActions();
+    auto* recent = new RecentFilesMenu(session_, file);
+    connect(recent, &RecentFilesMenu::fileChosen, this, &MainWindow::openRecentFile);
+    file->addMenu(recent);
     file->addAction(saveAction_);
     file->addAction(saveAsAction_);
     file->addSeparator();
@@ -432,44 +363,10 @@ void MainWindow::saveLayout() const {
 }
 
 void MainWindow::createStatusBar() {
-    // The message on the left (createCentre: MessageBar) takes the room the permanent widgets
-    // leave; the environment's status is whole when there is room and cut short (…) when not, so
-    // it never sets the window's least width.
-    envStatus_ = new ElidedLabel(QStringLiteral("envStatusLabel"), this);
-    progress_ = new QProgressBar(this);
-    progress_->setObjectName(QStringLiteral("envProgress"));
-    progress_->setRange(0, 100);
-    progress_->setMaximumWidth(220);
-    progress_->setTextVisible(true);
-    progress_->hide();
-    statusBar()->addPermanentWidget(progress_);
-    statusBar()->addPermanentWidget(envStatus_);
-    connect(environments_, &EnvironmentManager::busyChanged, this, [this](bool busy) {
-        progress_->setVisible(busy || importing());
-        if (busy) {
-            progress_->setRange(0, 100);
-            progress_->setValue(0);
-        }
-    });
-    connect(environments_, &EnvironmentManager::progress, this,
-            [this](const QString& stage, double fraction) {
-                progress_->setRange(0, 100);
-                progress_->setFormat(stage + QStringLiteral(" %p%"));
-                progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
-            });
+    // The message line (createCentre: MessageBar) takes the room these leave.
+    new StatusIndicators(statusBar(), document_, environments_, importer_, this);
     connect(importer_, &MeshImporter::backgroundStarted, this, [this](int files) {
-        // One file: a busy indicator (a file is read whole, with no progress of its own); several:
-        // the fraction of files read.
-        progress_->setRange(0, files > 1 ? 100 : 0);
-        progress_->setValue(0);
-        progress_->setFormat(tr("importing"));
-        progress_->show();
         messages_->showMessage(tr("Importing %n mesh(es)…", nullptr, files), false);
-    });
-    connect(importer_, &MeshImporter::progress, this, [this](const QString& stage, double fraction) {
-        if (progress_->maximum() == 0) return;
-        progress_->setFormat(stage + QStringLiteral(" %p%"));
-        progress_->setValue(static_cast<int>(std::lround(100.0 * fraction)));
     });
     sendFieldUndoKeysToDocument();
 }
@@ -503,14 +400,13 @@ void MainWindow::setDefaultPrompts() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Files: modified state, saving, recent files, autosave
+// Files: what the session says, and the questions it needs answered (scene_file_session.h)
 
 void MainWindow::connectSession() {
     setWindowTitle(session_->windowTitle());
     connect(session_, &SceneFileSession::titleChanged, this, &QWidget::setWindowTitle);
     connect(session_, &SceneFileSession::modifiedChanged, this, &QWidget::setWindowModified);
     connect(session_, &SceneFileSession::sceneReplaced, this, &MainWindow::showSceneCamera);
-    connect(session_, &SceneFileSession::recentFilesChanged, this, &MainWindow::updateRecentFileActions);
     connect(session_, &SceneFileSession::openReported, this, [this](const QString& message, bool error) {
         messages_->showMessageOf(MessageBar::Kind::Scene, message, error);
     });
@@ -584,23 +480,6 @@ bool MainWindow::saveAs() {
 
 bool MainWindow::saveScene(const QString& path) { return session_->saveTo(path); }
 
-void MainWindow::updateRecentFileActions() {
-    const QStringList files = session_->recentFiles();
-    for (std::size_t i = 0; i < recentFileActions_.size(); ++i) {
-        QAction* action = recentFileActions_[i];
-        const bool used = static_cast<qsizetype>(i) < files.size();
-        action->setVisible(used);
-        if (!used) continue;
-        const QString& file = files.at(static_cast<qsizetype>(i));
-        action->setText(tr("&%1 %2").arg(i + 1).arg(QFileInfo(file).fileName()));
-        action->setToolTip(file);
-        action->setStatusTip(file);
-        action->setData(file);
-    }
-    clearRecentAction_->setEnabled(!files.isEmpty());
-    if (recentMenu_) recentMenu_->setEnabled(!files.isEmpty());
-}
-
 bool MainWindow::offerAutosaveRestore() {
     const std::optional<Autosave::Leftover> newest = SceneFileSession::newestLeftover();
     if (!newest) return false;
@@ -614,72 +493,12 @@ bool MainWindow::offerAutosaveRestore() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Refreshing widgets from the document and the environment
-
-void MainWindow::refreshStatus() {
-    const auto current = environments_->current();
-    const EnvironmentSettings& s = current ? current->settings : document_->scene().environment;
-    QString text = QStringLiteral("%1 · %2 · %3")
-                       .arg(environmentDisplayName(s.source))
-                       .arg(squaredSize(current && current->base ? current->base->size() : s.faceSize))
-                       .arg(QString::fromLatin1(builderName(s.builder)));
-    if (!current) text += tr(" (loading)");
-    else if (!current->complete()) text += tr(" (building the chain)");
-    envStatus_->setWholeText(text);
-
-    // The environment openEnvironment asked for: loaded (drawn, perhaps before its chain), or the
-    // document no longer asks for it (undone, another scene opened; a failure is
-    // onEnvironmentFailed's). Either way the status bar stops saying it is being opened.
-    if (openingEnvironment_.empty()) return;
-    const QString name = QFileInfo(QString::fromStdString(openingEnvironment_)).fileName();
-    if (current && current->settings.source == openingEnvironment_) {
-        openingEnvironment_.clear();
-        messages_->showMessageOf(MessageBar::Kind::Environment, tr("Loaded %1").arg(name), false);
-    } else if (document_->scene().environment.source != openingEnvironment_) {
-        openingEnvironment_.clear();
-        if (messages_->statusText() == tr("Opening environment %1…").arg(name)) messages_->clearStatus();
-    }
-}
-
-void MainWindow::showSelectionInList(int index) {
-    QItemSelectionModel* selection = sceneList_->selectionModel();
-    if (document_->isValidIndex(index))
-        selection->setCurrentIndex(sceneModel_->index(index), QItemSelectionModel::ClearAndSelect);
-    else
-        selection->clear();
-}
-
-// ---------------------------------------------------------------------------------------------
 // Actions
 
 bool MainWindow::openEnvironment(const QString& path) {
-    const QFileInfo info(path);
-    if (!info.exists()) {
-        messages_->showMessageOf(MessageBar::Kind::Environment, tr("%1: no such file or folder").arg(path), true);
-        return false;
-    }
+    if (!environmentRequests_->open(path)) return false;
     session_->noteDirectoryOf(path);
-    EnvironmentSettings settings = document_->scene().environment;
-    settings.source = info.absoluteFilePath().toStdString();
-    settings.layout = EnvLayout::Auto;
-    environments_->forgetFailure();  // an explicit open reads the file again, fixed or not
-    openingEnvironment_ = settings.source;
-    // Said until it is loaded or fails (refreshStatus, onEnvironmentFailed).
-    messages_->showUntilNextMessage(tr("Opening environment %1…").arg(info.fileName()));
-    document_->setEnvironment(settings);
-    refreshStatus();  // the file drawn already: loaded at once
     return true;
-}
-
-void MainWindow::onEnvironmentFailed(const QString& message) {
-    openingEnvironment_.clear();
-    // The manager logs its failures.
-    messages_->showMessageOf(MessageBar::Kind::Environment, message, true, /*log=*/false);
-    // Keep drawing what was there, and make the document say so again; the step that asked for
-    // the file is withdrawn rather than answered by a step of its own (scene_document.h).
-    EnvironmentSettings fallback;  // nothing drawn yet: the embedded default
-    if (const auto current = environments_->current()) fallback = current->settings;
-    document_->withdrawFailedEnvironment(environments_->lastFailure(), fallback);
 }
 
 void MainWindow::importMeshes(const QStringList& paths) { importer_->import(paths); }
@@ -694,8 +513,6 @@ bool MainWindow::openMeshes(const QStringList& paths, bool askFirst) {
 }
 
 void MainWindow::finishImport(const QStringList& added, const QStringList& errors) {
-    progress_->setVisible(importing() || environments_->busy());
-    progress_->setRange(0, 100);
     if (openingMeshes_ && !added.isEmpty()) {
         // openMeshes: the imported objects are a new, untitled scene (the import's undo step
         // holds the objects they replaced).
@@ -716,40 +533,16 @@ void MainWindow::finishImport(const QStringList& added, const QStringList& error
 }
 
 bool MainWindow::exportImage(const QString& path, QSize size) {
-    const qreal ratio = viewport_->devicePixelRatio();
-    if (size == QSize())  // the view's own pixels
-        size = QSize(static_cast<int>(std::lround(viewport_->width() * ratio)),
-                     static_cast<int>(std::lround(viewport_->height() * ratio)));
-    QByteArray format = QFileInfo(path).suffix().toUpper().toLatin1();
-    if (format.isEmpty()) format = "PNG";
-    const bool exr = format == "EXR";
+    if (size == QSize()) size = devicePixelSize(*viewport_);  // the view's own pixels
     try {
-        // Before anything is drawn: a folder that cannot take the file.
-        const QFileInfo folder(QFileInfo(path).absolutePath());
-        if (!folder.isDir()) throw FileError(path.toStdString(), "its folder does not exist");
-        if (!folder.isWritable()) throw FileError(path.toStdString(), "its folder is not writable");
-        QString why;
-        std::vector<float> hdr;
-        const QImage image = viewport_->renderImage(size.width(), size.height(), /*transparent=*/true,
-                                                    exr ? &hdr : nullptr, &why);
-        if (image.isNull()) throw FileError(path.toStdString(), why.toStdString());
-        if (exr) {
-            writeFloatChannels(path.toStdString(), image.width(), image.height(), {"R", "G", "B", "A"}, hdr);
-        } else {
-            // Straight alpha (the tone pass un-premultiplies); opaque where the background shows.
-            const QImage out = document_->scene().display.showBackground
-                                   ? image.convertToFormat(QImage::Format_RGB888)
-                                   : image.convertToFormat(QImage::Format_RGBA8888);
-            writeFileAtomically(path.toStdString(),
-                                [&](QIODevice& device) { return out.save(&device, format.constData()); });
-        }
+        const ExportedImage image = exportViewImage(*viewport_, path, size, document_->scene().display.showBackground);
         session_->noteDirectoryOf(path);
         messages_->showMessage(tr("Exported %1 (%2×%3%4)")
-                        .arg(QFileInfo(path).fileName())
-                        .arg(image.width())
-                        .arg(image.height())
-                        .arg(exr ? tr(", linear float") : QString()),
-                    false);
+                                   .arg(QFileInfo(path).fileName())
+                                   .arg(image.size.width())
+                                   .arg(image.size.height())
+                                   .arg(image.linear ? tr(", linear float") : QString()),
+                               false);
         return true;
     } catch (const FileError& e) {
         messages_->showMessage(QString::fromStdString(e.what()), true);
@@ -831,10 +624,7 @@ void MainWindow::importMeshDialog() {
 }
 
 void MainWindow::exportImageDialog() {
-    const qreal ratio = viewport_->devicePixelRatio();
-    const QSize viewSize(static_cast<int>(std::lround(viewport_->width() * ratio)),
-                         static_cast<int>(std::lround(viewport_->height() * ratio)));
-    ExportImageDialog options(viewSize, viewport_->maxRenderSize(), this);
+    ExportImageDialog options(devicePixelSize(*viewport_), viewport_->maxRenderSize(), this);
     if (options.exec() != QDialog::Accepted) return;
     const bool exr = options.format() == ExportImageDialog::Format::Exr;
     const QString suffix = exr ? QStringLiteral("exr") : QStringLiteral("png");
@@ -866,30 +656,21 @@ void MainWindow::dropEvent(QDropEvent* event) {
 }
 
 void MainWindow::openFiles(const QStringList& paths, bool meshesOpen) {
-    QString scene, environment;
-    QStringList libraries, meshes, unknown;
-    for (const QString& path : paths) {
-        switch (fileKindOf(path)) {
-            case FileKind::Scene: if (scene.isEmpty()) scene = path; break;
-            case FileKind::Library: libraries << path; break;
-            case FileKind::Mesh: meshes << path; break;
-            case FileKind::Environment: environment = path; break;
-            case FileKind::Unknown: unknown << path; break;
-        }
-    }
+    const FilesByKind files = sortByKind(paths);
     // A scene replaces everything, so it goes first; meshes and an environment then add to it.
-    if (!scene.isEmpty()) openScene(scene);
-    if (!meshes.isEmpty()) {
-        if (meshesOpen && scene.isEmpty())
-            openMeshes(meshes);
+    if (!files.scene.isEmpty()) openScene(files.scene);
+    if (!files.meshes.isEmpty()) {
+        if (meshesOpen && files.scene.isEmpty())
+            openMeshes(files.meshes);
         else
-            importMeshes(meshes);
+            importMeshes(files.meshes);
     }
-    if (!environment.isEmpty()) openEnvironment(environment);
-    for (const QString& library : libraries) libraryDock_->importLibrary(library);
-    if (!unknown.isEmpty())
+    if (!files.environment.isEmpty()) openEnvironment(files.environment);
+    for (const QString& library : files.libraries) libraryDock_->importLibrary(library);
+    if (!files.unknown.isEmpty())
         messages_->showMessage(
-            tr("Not a scene, mesh or environment (or not found): %1").arg(unknown.join(QStringLiteral(", "))), true);
+            tr("Not a scene, mesh or environment (or not found): %1").arg(files.unknown.join(QStringLiteral(", "))),
+            true);
 }
 
 void MainWindow::sendFieldUndoKeysToDocument() {

@@ -26,6 +26,18 @@ inline constexpr const char* kSceneSuffix = "mipgloss";
 // otherwise only the name counts, so a file that does not exist yet has its kind.
 FileKind fileKindOf(const QString& path);
 
+// Files handed over together (a drop, the command line) sorted by kind. One scene is opened, the
+// first given; one environment is drawn, the last given (each would replace the one before);
+// every library and mesh is taken, in the order given; the rest are named in an error.
+struct FilesByKind {
+    QString scene;
+    QString environment;
+    QStringList libraries;
+    QStringList meshes;
+    QStringList unknown;
+};
+FilesByKind sortByKind(const QStringList& paths);
+
 // The suffixes of a kind, lower case, without the dot, in the order dialogs list them (none for
 // Unknown).
 QStringList suffixesOf(FileKind kind);

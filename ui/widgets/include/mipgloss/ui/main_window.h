@@ -28,7 +28,6 @@
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/mesh_importer.h"
 #include "mipgloss/ui/message_bar.h"
-#include "mipgloss/ui/recent_files.h"
 #include "mipgloss/ui/scene_file_session.h"
 
 #include <QMainWindow>
@@ -36,29 +35,23 @@
 #include <QString>
 #include <QStringList>
 
-#include <array>
 #include <cstdint>
 #include <functional>
-#include <string>
 
 class QAction;
-class QLabel;
 class QListView;
-class QMenu;
-class QProgressBar;
 class QWidget;
 
 namespace mipgloss::ui {
 
-class ElidedLabel;
 class SceneDocument;
 class LibraryDocument;
 class LibraryDock;
 class EnvironmentManager;
+class EnvironmentRequests;
 class EnvironmentPanel;
 class Viewport;
 class MaterialPanel;
-class SceneListModel;
 class ViewToolBar;
 
 class MainWindow : public QMainWindow {
@@ -132,13 +125,14 @@ public slots:
     // Offers the newest autosave a crashed session left behind (Prompts::restoreAutosave); true
     // when one was restored.
     bool offerAutosaveRestore();
-    // Writes the autosave now if the scene is modified and changed since the last one (the timer
-    // calls it); false when there was nothing to write or the write failed.
+    // Writes the autosave now if the scene is modified and changed since the last one (the
+    // session's timer calls it); false when there was nothing to write or the write failed.
     bool autosaveNow() { return session_->autosaveNow(); }
 
     // Sets the document's environment source to `path` (a file, a face of a six-face set or a
-    // directory); the EnvironmentManager imports it. False (with a message) if it does not exist;
-    // a file that exists but cannot be read fails later through EnvironmentManager::failed.
+    // directory; environment_requests.h); the EnvironmentManager imports it. False (with a
+    // message) if it does not exist; a file that exists but cannot be read fails later through
+    // EnvironmentManager::failed.
     bool openEnvironment(const QString& path);
     // Meshes added beside the scene (File → Import mesh, drops).
     void importMeshes(const QStringList& paths);
@@ -184,7 +178,6 @@ private:
     void createMenus();
     void createStatusBar();
     void createViewToolBar();
-    QWidget* createSceneDock();
     // The window's geometry and its docks' layout, kept in the user's settings (closeEvent) and
     // restored when the window is made; with none saved the window opens maximised.
     void restoreLayout();
@@ -198,16 +191,12 @@ private:
     // Files: the session's signals shown; the questions asked.
     void connectSession();
     bool maybeSave();
-    void updateRecentFileActions();
     void setDefaultPrompts();
 
-    void refreshStatus();
-    void showSelectionInList(int index);
     // Undo and Redo keys in the Material and Environment panels' fields undo the document
     // (field_undo_keys.h).
     void sendFieldUndoKeysToDocument();
     void finishImport(const QStringList& added, const QStringList& errors);
-    void onEnvironmentFailed(const QString& message);
 
     void openSceneDialog();
     void openEnvironmentDialog();
@@ -221,21 +210,17 @@ private:
     Viewport* viewport_ = nullptr;
     MaterialPanel* materialPanel_ = nullptr;
     EnvironmentPanel* environmentPanel_ = nullptr;
-    SceneListModel* sceneModel_ = nullptr;
     QListView* sceneList_ = nullptr;
 
     SceneFileSession* session_ = nullptr;
     MessageBar* messages_ = nullptr;
-    ElidedLabel* envStatus_ = nullptr;
-    QProgressBar* progress_ = nullptr;
+    EnvironmentRequests* environmentRequests_ = nullptr;
 
     // Actions (createActions), in menu order.
     LibraryDocument* library_ = nullptr;
     LibraryDock* libraryDock_ = nullptr;
     QAction* newAction_ = nullptr;
     QAction* openAction_ = nullptr;
-    std::array<QAction*, kMaxRecentFiles> recentFileActions_{};
-    QAction* clearRecentAction_ = nullptr;
     QAction* saveAction_ = nullptr;
     QAction* saveAsAction_ = nullptr;
     QAction* openEnvironmentAction_ = nullptr;
@@ -257,12 +242,8 @@ private:
     ViewToolBar* viewToolBar_ = nullptr;
     // openMeshes is under way: its import's objects make a new, untitled scene.
     bool openingMeshes_ = false;
-    QMenu* recentMenu_ = nullptr;
 
     Prompts prompts_;
-    // The file or folder openEnvironment asked for, until it is loaded or fails: the status bar
-    // says "Opening environment …" until then, and no longer.
-    std::string openingEnvironment_;
 };
 
 }  // namespace mipgloss::ui
