@@ -9,6 +9,7 @@
 #include "mipgloss/ui/recent_files.h"
 #include "mipgloss/ui/scene_document.h"
 
+#include "session_test_support.h"
 #include "widget_test_support.h"
 
 #include <gtest/gtest.h>
@@ -28,14 +29,9 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::useTestFolders;
 
 namespace {
-
-void useTestFolders() {
-    QStandardPaths::setTestModeEnabled(true);
-    QDir(Autosave::folder()).removeRecursively();
-    RecentFiles::clear();
-}
 
 // A scene whose first material is λ = `lambda`, saved to `path` by a window of its own.
 void saveSceneWithLambda(const QString& path, float lambda) {
