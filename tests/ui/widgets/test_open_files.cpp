@@ -1,5 +1,5 @@
 // Files handed to the window (mipgloss-gui's command line, a file manager's "Open with", drops), told
-// apart by extension (main_window.cpp, classify): a scene is .mipgloss or, from older versions,
+// apart by extension (file_kinds.h, fileKindOf): a scene is .mipgloss or, from older versions,
 // .json; a .mglib library's materials are imported into the user's library; anything else is named
 // in an error message. Under QStandardPaths test mode, so the user's own library is never touched.
 #include "gltf_writer.h"
