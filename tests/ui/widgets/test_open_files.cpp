@@ -1,5 +1,5 @@
 // Files handed to the window (mipgloss-gui's command line, a file manager's "Open with", drops), told
-// apart by extension (main_window.cpp, classify): a scene is .mipgloss or, from older versions,
+// apart by extension (file_kinds.h, fileKindOf): a scene is .mipgloss or, from older versions,
 // .json; a .mglib library's materials are imported into the user's library; anything else is named
 // in an error message. Under QStandardPaths test mode, so the user's own library is never touched.
 #include "gltf_writer.h"
@@ -9,6 +9,7 @@
 #include "mipgloss/ui/recent_files.h"
 #include "mipgloss/ui/scene_document.h"
 
+#include "session_test_support.h"
 #include "widget_test_support.h"
 
 #include <gtest/gtest.h>
@@ -28,14 +29,9 @@
 
 using namespace mipgloss;
 using namespace mipgloss::ui;
+using mipgloss::test::useTestFolders;
 
 namespace {
-
-void useTestFolders() {
-    QStandardPaths::setTestModeEnabled(true);
-    QDir(Autosave::folder()).removeRecursively();
-    RecentFiles::clear();
-}
 
 // A scene whose first material is λ = `lambda`, saved to `path` by a window of its own.
 void saveSceneWithLambda(const QString& path, float lambda) {

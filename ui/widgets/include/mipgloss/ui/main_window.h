@@ -6,26 +6,20 @@
 // Editing. Every scene edit is one step on the document's undo stack (scene_document.h); Edit →
 // Undo and Redo (the platform's shortcuts) name it: "Undo Change λ of Gold".
 //
-// Files. File → New, Open, Open Recent (recent_files.h), Save (Ctrl+S; a scene never saved asks
-// for a file, as Save As does), Save As, Quit. The title is "<file name>[*] — mipgloss" ("Untitled"
-// before the first save), with the platform's modified mark. The scene is modified when it differs
-// (Scene::operator==) from the one last opened, saved or made new; so undoing back to the saved
-// state clears the mark, and library edits, which share the undo stack, never set it. New, Open,
-// Quit and closing the window ask first when it is modified: Save, Discard or Cancel.
-//
-// Autosave (autosave.h). While the scene is modified it is written every autosaveInterval() (a
-// minute) to the user's data folder; saving, New, Open and a clean exit remove it. A file left by a
-// session that did not end cleanly is offered for restoring by offerAutosaveRestore() (the
-// application calls it at start): the restored scene keeps the file name it had (or none) and is
-// marked modified.
+// Files. File → New, Open, Open Recent, Save (Ctrl+S; a scene never saved asks for a file, as Save
+// As does), Save As, Quit. The scene's file, title, modified mark, recent files and autosave are
+// the session's (scene_file_session.h); the window asks the questions: New, Open, Quit and closing
+// the window ask first when the scene is modified (Save, Discard or Cancel), and an autosave a
+// crashed session left is offered by offerAutosaveRestore() (the application calls it at start).
+// What is opened, dropped or given on the command line is told apart by fileKindOf (file_kinds.h).
 //
 // Errors a user can cause (a broken mesh, environment or scene file) never change the scene: a
 // failed mesh adds nothing, a failed environment leaves the old one drawn (and the document's
 // environment settings are put back to it, without an undo step: the step that asked for the file
 // is withdrawn, SceneDocument::withdrawFailedEnvironment), a failed scene file leaves the open
-// scene. Each is shown in a dismissable banner above the viewport, kept in lastMessage() and
-// logged to stderr. Every file the window writes (scenes, autosaves, exported images) is written
-// atomically (atomic_file.h).
+// scene. Each is shown by the message bar (message_bar.h: a dismissable banner above the viewport
+// and the status line), kept in lastMessage() and logged to stderr. Every file the window writes
+// (scenes, autosaves, exported images) is written atomically (atomic_file.h).
 //
 // Imported meshes: mesh_importer.h (loading off the UI thread, the placement rule); one import is
 // one undo step, and the view frames all afterwards.
@@ -33,38 +27,31 @@
 
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/mesh_importer.h"
-#include "mipgloss/ui/recent_files.h"
+#include "mipgloss/ui/message_bar.h"
+#include "mipgloss/ui/scene_file_session.h"
 
 #include <QMainWindow>
 #include <QSize>
 #include <QString>
 #include <QStringList>
 
-#include <array>
 #include <cstdint>
 #include <functional>
-#include <memory>
-#include <optional>
 
 class QAction;
-class QLabel;
 class QListView;
-class QMenu;
-class QProgressBar;
-class QTimer;
 class QWidget;
 
 namespace mipgloss::ui {
 
-class Autosave;
 class SceneDocument;
 class LibraryDocument;
 class LibraryDock;
 class EnvironmentManager;
+class EnvironmentRequests;
 class EnvironmentPanel;
 class Viewport;
 class MaterialPanel;
-class SceneListModel;
 class ViewToolBar;
 
 class MainWindow : public QMainWindow {
@@ -75,7 +62,7 @@ public:
 
     static constexpr std::int64_t kBackgroundImportBytes = MeshImporter::kBackgroundImportBytes;
     static constexpr float kImportedLambda = MeshImporter::kImportedLambda;
-    static constexpr int kDefaultAutosaveIntervalMs = 60 * 1000;
+    static constexpr int kDefaultAutosaveIntervalMs = SceneFileSession::kDefaultAutosaveIntervalMs;
     // saveState's version (restoreLayout): a layout saved by a build with other docks is ignored.
     static constexpr int kLayoutVersion = 2;
 
@@ -91,12 +78,16 @@ public:
     QListView* sceneList() const { return sceneList_; }
     ViewToolBar* viewToolBar() const { return viewToolBar_; }
     MeshImporter* importer() const { return importer_; }
+    // The scene's file, modified state, recent files and autosave.
+    SceneFileSession* session() const { return session_; }
+    // The banner above the viewport and the status line.
+    MessageBar* messages() const { return messages_; }
 
     // The last message shown (error or information) and whether it was an error.
-    const QString& lastMessage() const { return lastMessage_; }
-    bool lastMessageIsError() const { return lastMessageIsError_; }
+    const QString& lastMessage() const { return messages_->lastMessage(); }
+    bool lastMessageIsError() const { return messages_->lastMessageIsError(); }
     // The scene file the document was last opened from or saved to; empty for a new scene.
-    const QString& sceneFile() const { return sceneFile_; }
+    const QString& sceneFile() const { return session_->file(); }
     // True while a background mesh import runs.
     bool importing() const { return importer_->busy(); }
 
@@ -113,10 +104,10 @@ public:
     };
     Prompts& prompts() { return prompts_; }
 
-    int autosaveInterval() const;
-    void setAutosaveInterval(int milliseconds);
+    int autosaveInterval() const { return session_->autosaveInterval(); }
+    void setAutosaveInterval(int milliseconds) { session_->setAutosaveInterval(milliseconds); }
     // This session's autosave (its file exists while modified work is autosaved).
-    const Autosave& autosave() const { return *autosave_; }
+    const Autosave& autosave() const { return session_->autosave(); }
 
 public slots:
     // New (Figure 1), Open, Save, Save As and opening a recent file. New and Open ask first when
@@ -134,13 +125,14 @@ public slots:
     // Offers the newest autosave a crashed session left behind (Prompts::restoreAutosave); true
     // when one was restored.
     bool offerAutosaveRestore();
-    // Writes the autosave now if the scene is modified and changed since the last one (the timer
-    // calls it); false when there was nothing to write or the write failed.
-    bool autosaveNow();
+    // Writes the autosave now if the scene is modified and changed since the last one (the
+    // session's timer calls it); false when there was nothing to write or the write failed.
+    bool autosaveNow() { return session_->autosaveNow(); }
 
     // Sets the document's environment source to `path` (a file, a face of a six-face set or a
-    // directory); the EnvironmentManager imports it. False (with a message) if it does not exist;
-    // a file that exists but cannot be read fails later through EnvironmentManager::failed.
+    // directory; environment_requests.h); the EnvironmentManager imports it. False (with a
+    // message) if it does not exist; a file that exists but cannot be read fails later through
+    // EnvironmentManager::failed.
     bool openEnvironment(const QString& path);
     // Meshes added beside the scene (File → Import mesh, drops).
     void importMeshes(const QStringList& paths);
@@ -156,10 +148,11 @@ public slots:
     // alpha when the background is hidden. A size beyond OpenGL's limits, an unwritable folder or a
     // failed render: false with a message naming the file and the problem; nothing is written.
     bool exportImage(const QString& path, QSize size = QSize());
-    // What dropping files does, also for command-line arguments: a .json scene opens (first),
-    // mesh files import (added beside the scene; with `meshesOpen` they are opened as the scene
-    // instead, as the command line does: openMeshes), an image or a folder becomes the environment
-    // (the last one given).
+    // What dropping files does, also for command-line arguments, by fileKindOf: a scene opens
+    // (the first given, before the rest), mesh files import (added beside the scene; with
+    // `meshesOpen` they are opened as the scene instead, as the command line does: openMeshes), an
+    // image or a folder becomes the environment (the last one given), a library's materials go
+    // into the user's library; anything else is named in an error.
     void openFiles(const QStringList& paths, bool meshesOpen = false);
     void frameAll();
     void frameSelected();  // all when nothing is selected
@@ -185,36 +178,25 @@ private:
     void createMenus();
     void createStatusBar();
     void createViewToolBar();
-    QWidget* createSceneDock();
     // The window's geometry and its docks' layout, kept in the user's settings (closeEvent) and
     // restored when the window is made; with none saved the window opens maximised.
     void restoreLayout();
     void saveLayout() const;
     // The document's scene with the view's camera: what Save writes.
     Scene sceneWithView() const;
-    // The document's scene is `scene`, fresh (no undo history): the view shows its saved camera,
-    // or frames it.
-    void showNewScene(Scene scene);
+    // The document has a new scene (SceneFileSession::sceneReplaced): the view shows its saved
+    // camera, or frames it.
+    void showSceneCamera();
 
-    // Files.
+    // Files: the session's signals shown; the questions asked.
+    void connectSession();
     bool maybeSave();
-    bool loadSceneFile(const QString& path);  // Open without asking
-    void markSaved();       // the document's scene is the saved one
-    // The document's scene is what `path` holds now (opened or saved): its file, saved state,
-    // recent files and title.
-    void matchesFile(const QString& path);
-    void updateModified();  // the title's mark from the scene
-    void forgetAutosave();  // the work is safe or knowingly dropped: no autosave to keep
-    void updateRecentFileActions();
-    QString displayName() const;
-    void refreshTitle();
     void setDefaultPrompts();
 
-    void refreshStatus();
-    void showSelectionInList(int index);
-    void showMessage(const QString& message, bool error, bool log = true);
+    // Undo and Redo keys in the Material and Environment panels' fields undo the document
+    // (field_undo_keys.h).
+    void sendFieldUndoKeysToDocument();
     void finishImport(const QStringList& added, const QStringList& errors);
-    void onEnvironmentFailed(const QString& message);
 
     void openSceneDialog();
     void openEnvironmentDialog();
@@ -228,21 +210,17 @@ private:
     Viewport* viewport_ = nullptr;
     MaterialPanel* materialPanel_ = nullptr;
     EnvironmentPanel* environmentPanel_ = nullptr;
-    SceneListModel* sceneModel_ = nullptr;
     QListView* sceneList_ = nullptr;
 
-    QWidget* banner_ = nullptr;
-    QLabel* bannerText_ = nullptr;
-    QLabel* envStatus_ = nullptr;
-    QProgressBar* progress_ = nullptr;
+    SceneFileSession* session_ = nullptr;
+    MessageBar* messages_ = nullptr;
+    EnvironmentRequests* environmentRequests_ = nullptr;
 
     // Actions (createActions), in menu order.
     LibraryDocument* library_ = nullptr;
     LibraryDock* libraryDock_ = nullptr;
     QAction* newAction_ = nullptr;
     QAction* openAction_ = nullptr;
-    std::array<QAction*, kMaxRecentFiles> recentFileActions_{};
-    QAction* clearRecentAction_ = nullptr;
     QAction* saveAction_ = nullptr;
     QAction* saveAsAction_ = nullptr;
     QAction* openEnvironmentAction_ = nullptr;
@@ -264,47 +242,8 @@ private:
     ViewToolBar* viewToolBar_ = nullptr;
     // openMeshes is under way: its import's objects make a new, untitled scene.
     bool openingMeshes_ = false;
-    QMenu* recentMenu_ = nullptr;
 
     Prompts prompts_;
-    QString lastMessage_;
-    bool lastMessageIsError_ = false;
-    QString sceneFile_;
-    QString lastDirectory_;
-    // The scene as last opened, saved or made new; none for a restored autosave (whose saved
-    // state is unknown, so it stays modified until saved).
-    std::optional<Scene> savedScene_;
-    std::unique_ptr<Autosave> autosave_;
-    QTimer* autosaveTimer_ = nullptr;
-    std::optional<Scene> lastAutosaved_;
-    QString lastAutosaveError_;
-
-    // The banner and the status bar (the end of main_window.cpp).
-    // What an error in the banner is about. The rule: a later success of the same kind of action
-    // (a scene opened, an environment loaded, meshes imported, a library file imported or
-    // exported) takes the banner down, as what failed has been done since or the user has moved
-    // on to another file of that kind; a success of another kind says nothing about what failed
-    // and leaves it. Other errors (saving, exporting an image, OpenGL) stay until dismissed.
-    enum class MessageKind { Other, Scene, Environment, Meshes, Library };
-    void showMessageOf(MessageKind kind, const QString& message, bool error, bool log = true);
-    // The rule, for a message of `kind` just shown.
-    void noteOutcome(MessageKind kind, bool error);
-    // The status bar's message, one line cut short (…) to the room beside its permanent widgets,
-    // whole in its tooltip; gone after `timeoutMs` (0: until the next message).
-    void showStatusMessage(const QString& message, int timeoutMs);
-    // A one-line label that shows its text cut short (…) to its width, whole in its tooltip, and
-    // asks for no width it cannot do without (the status bar's labels).
-    static QLabel* makeElidedLabel(QWidget* parent, const QString& objectName);
-    static void setElidedText(QLabel* label, const QString& text);
-    // Undo and Redo keys in the Material and Environment panels' fields undo the document.
-    void sendFieldUndoKeysToDocument();
-
-    MessageKind bannerKind_ = MessageKind::Other;
-    // The file or folder openEnvironment asked for, until it is loaded or fails: the status bar
-    // says "Opening environment …" until then, and no longer.
-    std::string openingEnvironment_;
-    QLabel* statusMessage_ = nullptr;
-    QTimer* statusMessageTimer_ = nullptr;
 };
 
 }  // namespace mipgloss::ui
