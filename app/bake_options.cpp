@@ -1,19 +1,11 @@
 #include "bake_options.h"
 
+#include "material_args.h"
+
 #include "mipgloss/io/cube_exr.h"
 #include "mipgloss/io/import.h"
 
-#include <cstdlib>
-
 namespace mipgloss::app {
-
-int parseFaceSize(const std::string& flag, const std::string& value) {
-    char* end = nullptr;
-    const long v = std::strtol(value.c_str(), &end, 10);
-    if (end == value.c_str() || *end != '\0' || v < 1 || v > 16384)
-        throw UsageError(flag + " needs a whole number from 1 to 16384, got '" + value + "'");
-    return static_cast<int>(v);
-}
 
 BakeOptions parseBakeOptions(Args args) {
     BakeOptions o;
@@ -25,7 +17,7 @@ BakeOptions parseBakeOptions(Args args) {
         auto value = [&] { return args.value(a); };
         if (a == "--out") req.outDir = value();
         else if (a == "--builder" || a == "--method") req.builder = parseChoice(a, value(), builders, builderName);
-        else if (a == "--size") req.import.faceSize = parseFaceSize(a, value());
+        else if (a == "--size") req.import.faceSize = parseWholeNumber(a, value(), 1, 16384);
         else if (a == "--layout")
             req.import.layout = parseChoice<EnvLayout>(
                 a, value(),

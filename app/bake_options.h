@@ -18,7 +18,4 @@ struct BakeOptions {
 // DDS and EXR options only with their format); a UsageError naming the flag otherwise.
 BakeOptions parseBakeOptions(Args args);
 
-// --size and bench's --sizes: a whole number from 1 to 16384.
-int parseFaceSize(const std::string& flag, const std::string& value);
-
 }  // namespace mipgloss::app

@@ -1,6 +1,6 @@
 #include "bench_options.h"
 
-#include "bake_options.h"
+#include "material_args.h"
 
 #include "mipgloss/ibl/phong.h"
 
@@ -25,12 +25,12 @@ BenchOptions parseBenchOptions(Args args) {
         if (a == "--env") o.environments.emplace_back(args.value(a));
         else if (a == "--sizes") {
             o.sizes.clear();
-            for (const auto& s : splitList(args.value(a))) o.sizes.push_back(parseFaceSize(a, s));
+            for (const auto& s : splitList(args.value(a))) o.sizes.push_back(parseWholeNumber(a, s, 1, 16384));
         } else if (a == "--builders" || a == "--methods") {
             o.builders.clear();
             for (const auto& name : splitList(args.value(a))) o.builders.push_back(parseChoice(a, name, all, builderName));
-        } else if (a == "--repeat") o.repeat = parseFaceSize(a, args.value(a));
-        else if (a == "--directions") o.directions = parseFaceSize(a, args.value(a));
+        } else if (a == "--repeat") o.repeat = parseWholeNumber(a, args.value(a), 1, 16384);
+        else if (a == "--directions") o.directions = parseWholeNumber(a, args.value(a), 1, 16384);
         else if (a == "--no-half") o.halfLevels = false;
         else if (a == "--shortcuts") o.shortcuts = true;
         else if (a == "--no-centre") o.centres = false;

@@ -21,6 +21,16 @@ float parseFloat(const std::string& flag, const std::string& value, float lo, fl
     return v;
 }
 
+int parseWholeNumber(const std::string& flag, const std::string& value, int lo, int hi) {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(value.c_str(), &end, 10);
+    if (value.empty() || end == value.c_str() || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+        throw UsageError(flag + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                         ", got '" + value + "'");
+    return static_cast<int>(v);
+}
+
 void parseSize(const std::string& flag, const std::string& text, int& w, int& h) {
     const auto x = text.find('x');
     auto whole = [&](const std::string& part, const char* axis) {

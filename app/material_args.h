@@ -14,6 +14,9 @@
 
 namespace mipgloss::app {
 
+// A whole number in [lo, hi] (decimal digits, an optional sign); UsageError naming `flag` and the
+// range otherwise.
+int parseWholeNumber(const std::string& flag, const std::string& value, int lo, int hi);
 // A finite number in [lo, hi]; UsageError naming `flag` otherwise.
 float parseFloat(const std::string& flag, const std::string& value, float lo, float hi);
 // --size WxH: two whole numbers of at least 1 into `w` and `h`, or a UsageError naming the flag and

@@ -1,21 +1,8 @@
 #include "render_options.h"
 
-#include <cerrno>
-#include <cstdlib>
-
 namespace mipgloss::app {
 
 namespace {
-
-// --turntable N: a whole number of frames from 1 to 3600.
-int parseFrameCount(const std::string& flag, const std::string& v) {
-    char* end = nullptr;
-    errno = 0;
-    const long n = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end != '\0' || errno == ERANGE || n < 1 || n > 3600)
-        throw UsageError(flag + " needs a whole number of frames from 1 to 3600, got '" + v + "'");
-    return static_cast<int>(n);
-}
 
 const std::vector<Builder> kBuilders(kAllBuilders.begin(), kAllBuilders.end());
 
@@ -47,7 +34,7 @@ RenderOptions parseRenderOptions(Args args) {
             o.toneMap = parseChoice<ToneMap>(a, value(), {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces}, toneMapName);
         else if (a == "--size") parseSize(a, value(), o.width, o.height);
         else if (a == "--spin") o.spin = parseFloat(a, value(), -36000.0f, 36000.0f);
-        else if (a == "--turntable") o.turntable = parseFrameCount(a, value());
+        else if (a == "--turntable") o.turntable = parseWholeNumber(a, value(), 1, 3600);
         else if (a == "--turntable-spin")
             o.spinKind = parseChoice<TurntableSpin>(a, value(), {TurntableSpin::Object, TurntableSpin::Environment},
                                                     turntableSpinName);

@@ -3,6 +3,8 @@
 #include "bake_options.h"
 #include "bench_options.h"
 
+#include "usage_error.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -10,16 +12,6 @@
 
 namespace mipgloss::app {
 namespace {
-
-template <class F>
-std::string usageError(F f) {
-    try {
-        f();
-    } catch (const UsageError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 BakeOptions bakeWith(std::vector<std::string> args) { return parseBakeOptions(Args(std::move(args))); }
 BenchOptions benchWith(std::vector<std::string> args) { return parseBenchOptions(Args(std::move(args))); }

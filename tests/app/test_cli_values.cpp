@@ -5,6 +5,8 @@
 
 #include "mipgloss/ibl/builders.h"
 
+#include "usage_error.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -12,17 +14,6 @@
 
 namespace mipgloss::app {
 namespace {
-
-// The message of the UsageError `f` throws ("" when it throws none).
-template <class F>
-std::string usageError(F f) {
-    try {
-        f();
-    } catch (const UsageError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 enum class Fruit { Apple, Pear, Plum };
 
@@ -69,6 +60,14 @@ TEST(ParseSize, RefusesZeroNegativeHugeAndMalformedNamingTheValue) {
               "--size needs WxH, two whole numbers such as 800x600, got 'big'");
     EXPECT_EQ(usageError([&] { parseSize("--size", "12x", w, h); }),
               "--size needs WxH, two whole numbers such as 800x600, got '12x'");
+}
+
+TEST(ParseWholeNumber, AcceptsTheLimitsAndRefusesFractionsSignsBeyondAndEmpty) {
+    EXPECT_EQ(parseWholeNumber("--repeat", "1", 1, 16384), 1);
+    EXPECT_EQ(parseWholeNumber("--repeat", "16384", 1, 16384), 16384);
+    for (const char* bad : {"0", "16385", "2.5", "", "x", "99999999999999999999"})
+        EXPECT_EQ(usageError([&] { parseWholeNumber("--repeat", bad, 1, 16384); }),
+                  std::string("--repeat needs a whole number from 1 to 16384, got '") + bad + "'");
 }
 
 TEST(ParseFloat, AcceptsTheLimitsAndRefusesBeyondThem) {

@@ -5,6 +5,8 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 
+#include "usage_error.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -12,16 +14,6 @@
 
 namespace mipgloss::app {
 namespace {
-
-template <class F>
-std::string usageError(F f) {
-    try {
-        f();
-    } catch (const UsageError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 LibraryAddOptions addWith(std::vector<std::string> args) { return parseLibraryAddOptions(Args(std::move(args))); }
 

@@ -106,9 +106,9 @@ TEST(RenderOptions, BadValuesAreRefusedInTheirExactWords) {
     EXPECT_EQ(refusal({"--turntable-spin", "camera", "--out", "a.png"}),
               "--turntable-spin is object or environment, got 'camera'");
     EXPECT_EQ(refusal({"--turntable", "0", "--out", "f_%d.png"}),
-              "--turntable needs a whole number of frames from 1 to 3600, got '0'");
+              "--turntable needs a whole number from 1 to 3600, got '0'");
     EXPECT_EQ(refusal({"--turntable", "2.5", "--out", "f_%d.png"}),
-              "--turntable needs a whole number of frames from 1 to 3600, got '2.5'");
+              "--turntable needs a whole number from 1 to 3600, got '2.5'");
     EXPECT_EQ(refusal({"--size", "0x120", "--out", "a.png"}), "--size 0x120: the width 0 must be at least 1");
     EXPECT_NE(refusal({"--lambda", "9", "--out", "a.png"}).find("--lambda needs a number from 0"), std::string::npos);
     EXPECT_NE(refusal({"--samples", "17", "--out", "a.png"}).find("--samples needs a number from 0"), std::string::npos);

@@ -32,9 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliResult;
+using test::q;
 using test::runCli;
-
-QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 
 QByteArray readBytes(const fs::path& file) {
     QFile in(q(file));
