@@ -2,6 +2,8 @@
 // (decode, lat-long -> cube conversion, filter, write), for lat-long inputs of several widths and
 // cubes of several face sizes. Timings are printed, never asserted.
 #include "bench_import.h"
+
+#include "cli_report.h"
 #include "process_memory.h"
 
 #include "mipgloss/ibl/parallel.h"
@@ -61,9 +63,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& text, int minimum) {
     std::vector<int> out;

@@ -2,6 +2,8 @@
 // costs and how close its reads come to the lobe they claim. Timings are printed, never asserted.
 #include "bench_stack.h"
 
+#include "cli_report.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/parallel.h"
@@ -50,7 +52,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 int parseCount(const std::string& flag, const std::string& text, int minimum, int maximum) {
     char* end = nullptr;

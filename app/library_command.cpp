@@ -1,5 +1,7 @@
 #include "library_command.h"
 
+#include "cli_report.h"
+#include "library_options.h"
 #include "material_args.h"
 #include "offscreen_session.h"
 
@@ -73,7 +75,7 @@ namespace {
 MaterialLibrary load(const fs::path& file) {
     ui::LibraryFileReport report;
     MaterialLibrary library = ui::loadLibrary(file, &report);
-    for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    printWarnings(report.warnings);
     return library;
 }
 
@@ -114,21 +116,6 @@ std::string describe(const Material& m) {
     return "lambda " + numberText(m.lambda) + ", n " + exponentText(m.lambda) + ", " + lookupModeName(m.mode);
 }
 
-std::string requireName(const std::string& flag, const std::string& name) {
-    if (const std::string problem = materialNameProblem(name); !problem.empty())
-        throw UsageError(flag + " '" + name + "': " + problem);
-    return name;
-}
-
-// The one positional argument every subcommand starts with.
-fs::path libraryArgument(Args& args, const std::string& command) {
-    if (args.empty()) throw UsageError("library " + command + " needs LIB.mglib");
-    const std::string file = args.next();
-    if (!file.empty() && file[0] == '-')
-        throw UsageError("library " + command + " needs LIB.mglib first, got '" + file + "'");
-    return file;
-}
-
 int list(Args args) {
     const fs::path file = libraryArgument(args, "list");
     bool json = false;
@@ -166,43 +153,21 @@ int list(Args args) {
 }
 
 int add(Args args) {
-    const fs::path file = libraryArgument(args, "add");
-    std::optional<std::string> name;
-    std::optional<std::string> lambdaFlag;  // which of --lambda and --exponent set it
-    Material material;
-    LayerFlags layerFlags;
-    while (!args.empty()) {
-        const std::string a = args.next();
-        auto value = [&] { return args.value(a); };
-        if (a == "--name") name = requireName(a, value());
-        else if (readLayerFlag(a, value, layerFlags)) continue;
-        else if (a == "--lambda" || a == "--exponent") {
-            if (lambdaFlag) throw UsageError(a + ": λ is already set by " + *lambdaFlag + "; give --lambda or --exponent once");
-            lambdaFlag = a;
-            material.lambda = a == "--lambda" ? parseLambda(a, value()) : parseExponentAsLambda(a, value());
-        } else if (a == "--mode") material.mode = parseMode(a, value());
-        else if (a == "--tint") material.tint = parseTint(a, value());
-        else if (a == "--irradiance") material.useIrradiance = true;
-        else if (a == "--grazing") material.sharperAtGrazing = true;
-        else throw UsageError("library add: unknown argument '" + a + "'");
-    }
-    if (!name) throw UsageError("library add needs --name NAME");
-    if (layerFlags.any()) {
-        const std::optional<float> lambda = lambdaFlag ? std::optional(material.lambda) : std::nullopt;
-        material.lambda = 0.0f;
-        applyLayerFlags(layerFlags, lambda, lambdaFlag.value_or(""), material);
-    }
+    const LibraryAddOptions options = parseLibraryAddOptions(std::move(args));
+    const fs::path& file = options.file;
+    const std::string& name = options.name;
+    const Material& material = options.material;
     if (material.useIrradiance && material.mode != LookupMode::Normal)
-        std::cerr << "mipgloss: warning: --irradiance shows only with --mode normal\n";
+        printWarnings({"--irradiance shows only with --mode normal"});
     // A library that does not exist yet starts empty; one that exists and cannot be read is refused.
     std::error_code ec;
     const bool exists = fs::exists(file, ec);
     if (ec) throw ui::LibraryFileError(file, "cannot read: " + ec.message());
     MaterialLibrary library = exists ? load(file) : MaterialLibrary{};
-    if (library.contains(*name)) throw nameTaken(file, *name);
-    library.entries.push_back({*name, material});
+    if (library.contains(name)) throw nameTaken(file, name);
+    library.entries.push_back({name, material});
     ui::saveLibrary(library, file);
-    std::cout << "added \"" << *name << "\" (" << describe(material) << ") to " << file.string() << '\n';
+    std::cout << "added \"" << name << "\" (" << describe(material) << ") to " << file.string() << '\n';
     return 0;
 }
 
@@ -213,7 +178,7 @@ int importGltf(Args args) {
     if (!args.empty()) throw UsageError("library import-gltf takes one ASSET");
     if (!isAssetFile(assetPath)) throw UsageError("library import-gltf: " + assetPath.string() + " is not a .gltf, .glb or .obj file");
     const Asset asset = loadAsset(assetPath);
-    for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    printWarnings(asset.warnings);
     if (asset.materials.empty()) throw AssetError(assetPath, "has no materials to import");
     std::error_code ec;
     const bool exists = fs::exists(file, ec);
@@ -269,20 +234,11 @@ int rename(Args args) {
 }
 
 int thumbnails(Args args, const char* argv0) {
-    const fs::path file = libraryArgument(args, "thumbnails");
-    std::optional<fs::path> outDir;
-    EnvironmentSettings settings;
-    int size = 256;
-    while (!args.empty()) {
-        const std::string a = args.next();
-        auto value = [&] { return args.value(a); };
-        if (a == "--out") outDir = value();
-        else if (a == "--env") settings.source = value();
-        else if (a == "--size") size = static_cast<int>(parseFloat(a, value(), 16.0f, 4096.0f));
-        else if (a == "--env-size") settings.faceSize = static_cast<int>(parseFloat(a, value(), 16.0f, 4096.0f));
-        else throw UsageError("library thumbnails: unknown argument '" + a + "'");
-    }
-    if (!outDir) throw UsageError("library thumbnails needs --out DIR");
+    const LibraryThumbnailOptions options = parseLibraryThumbnailOptions(std::move(args));
+    const fs::path& file = options.file;
+    const fs::path& outDir = options.outDir;
+    const EnvironmentSettings& settings = options.environment;
+    const int size = options.size;
     const MaterialLibrary library = load(file);
     if (library.entries.empty()) {
         std::cout << file.string() << " has no materials; no thumbnails written\n";
@@ -292,12 +248,12 @@ int thumbnails(Args args, const char* argv0) {
     // One prepared environment serves every material (thumbnailNeeds).
     const auto environment = std::make_shared<const PreparedEnvironment>(
         prepareEnvironment(settings, thumbnailNeeds(settings.faceSize)));
-    for (const std::string& w : environment->report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    printWarnings(environment->report.warnings);
     const std::vector<std::string> names = thumbnailFileNames(library);
     for (std::size_t i = 0; i < library.entries.size(); ++i) {
         const LibraryMaterial& entry = library.entries[i];
         const QImage image = ui::renderThumbnail(session.renderer(), entry.material, environment, size);
-        const fs::path png = *outDir / (names[i] + ".png");
+        const fs::path png = outDir / (names[i] + ".png");
         if (image.isNull()) throw std::runtime_error(png.string() + ": the render failed");
         ui::writeFileAtomically(png, [&](QIODevice& device) { return image.save(&device, "PNG"); });
         std::cout << png.string() << '\t' << entry.name << '\n';

@@ -3,6 +3,8 @@
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -19,6 +21,39 @@ float parseFloat(const std::string& flag, const std::string& value, float lo, fl
     return v;
 }
 
+int parseWholeNumber(const std::string& flag, const std::string& value, int lo, int hi) {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(value.c_str(), &end, 10);
+    if (value.empty() || end == value.c_str() || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+        throw UsageError(flag + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                         ", got '" + value + "'");
+    return static_cast<int>(v);
+}
+
+void parseSize(const std::string& flag, const std::string& text, int& w, int& h) {
+    const auto x = text.find('x');
+    auto whole = [&](const std::string& part, const char* axis) {
+        char* end = nullptr;
+        errno = 0;
+        const long long v = part.empty() ? 0 : std::strtoll(part.c_str(), &end, 10);
+        if (part.empty() || *end != '\0' || errno == ERANGE || v > 1'000'000'000)
+            throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
+        if (v < 1) throw UsageError(flag + " " + text + ": the " + axis + " " + part + " must be at least 1");
+        return static_cast<int>(v);
+    };
+    if (x == std::string::npos)
+        throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
+    w = whole(text.substr(0, x), "width");
+    h = whole(text.substr(x + 1), "height");
+}
+
+std::string lowerExtension(const std::filesystem::path& file) {
+    std::string s = file.extension().string();
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
 float parseLambda(const std::string& flag, const std::string& value) {
     return parseFloat(flag, value, 0.0f, static_cast<float>(kMaxLambda));
 }
@@ -30,9 +65,7 @@ float parseExponentAsLambda(const std::string& flag, const std::string& value) {
 }
 
 LookupMode parseMode(const std::string& flag, const std::string& value) {
-    LookupMode mode;
-    if (!parseLookupMode(value, mode)) throw UsageError(flag + " is reflect or normal, got '" + value + "'");
-    return mode;
+    return parseChoice<LookupMode>(flag, value, {LookupMode::Reflect, LookupMode::Normal}, lookupModeName);
 }
 
 Rgb parseTint(const std::string& flag, const std::string& value) {

@@ -7,14 +7,23 @@
 
 #include "mipgloss/scene/scene.h"
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
 
 namespace mipgloss::app {
 
+// A whole number in [lo, hi] (decimal digits, an optional sign); UsageError naming `flag` and the
+// range otherwise.
+int parseWholeNumber(const std::string& flag, const std::string& value, int lo, int hi);
 // A finite number in [lo, hi]; UsageError naming `flag` otherwise.
 float parseFloat(const std::string& flag, const std::string& value, float lo, float hi);
+// --size WxH: two whole numbers of at least 1 into `w` and `h`, or a UsageError naming the flag and
+// the value. What the OpenGL can draw is checked once a context exists (checkRenderSize).
+void parseSize(const std::string& flag, const std::string& text, int& w, int& h);
+// A file's extension in lower case (".exr", ".png"): how an output's format is chosen.
+std::string lowerExtension(const std::filesystem::path& file);
 // --lambda L: λ in [0, kMaxLambda].
 float parseLambda(const std::string& flag, const std::string& value);
 // --exponent N: the λ of Phong exponent N >= 0; "mirror" or "inf" is the mirror, λ 0.

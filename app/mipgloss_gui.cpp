@@ -10,6 +10,7 @@
 //   mipgloss-gui --screenshot FILE          saves the first complete frame to FILE, then exits
 //
 // Exit status: 0 done, 1 bad arguments, 2 no usable OpenGL, 3 timed out, 4 screenshot not written.
+#include "material_args.h"
 #include "process_memory.h"
 
 #include "mipgloss/ui/atomic_file.h"
@@ -86,7 +87,7 @@ struct GuiOptions {
     QCommandLineOption timeout{
         QStringLiteral("timeout"),
         QStringLiteral("Give up on --time-to-first-frame or --screenshot after <seconds> "
-                       "(default 300)."),
+                       "(default 300; at most 86400, a day)."),
         QStringLiteral("seconds"), QStringLiteral("300")};
     QCommandLineOption wholeWindow{
         QStringLiteral("whole-window"),
@@ -149,10 +150,13 @@ int main(int argc, char** argv) {
 
     const bool timing = parser.isSet(options.time);
     const QString screenshot = parser.value(options.screenshot);
-    bool timeoutOk = false;
-    const int timeoutSeconds = parser.value(options.timeout).toInt(&timeoutOk);
-    if (!timeoutOk || timeoutSeconds <= 0) {
-        std::fprintf(stderr, "mipgloss-gui: --timeout needs a positive number of seconds\n");
+    // The numbers `mipgloss` reads, read the same way (app/material_args.h); at most a day, so the
+    // timer's milliseconds fit an int.
+    int timeoutSeconds = 0;
+    try {
+        timeoutSeconds = mipgloss::app::parseWholeNumber("--timeout", parser.value(options.timeout).toStdString(), 1, 86400);
+    } catch (const mipgloss::app::UsageError& e) {
+        std::fprintf(stderr, "mipgloss-gui: %s\n", e.what());
         return 1;
     }
 

@@ -1,5 +1,7 @@
 #include "offscreen_session.h"
 
+#include "cli_args.h"
+
 #include "mipgloss/ui/gl_format.h"
 
 #include <cstdlib>
@@ -33,5 +35,20 @@ OffscreenSession::OffscreenSession(const char* argv0, const std::string& command
 
 // GL teardown while the application exists.
 OffscreenSession::~OffscreenSession() { renderer_.reset(); }
+
+void checkRenderSize(const ui::OffscreenRenderer& renderer, const std::string& sizeFlag, int w, int h,
+                     std::optional<int> samples) {
+    const ui::RenderSizeLimits limits = renderer.maxRenderSize();
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    if (w > limits.maxWidth)
+        throw UsageError(sizeFlag + " " + size + ": the width " + std::to_string(w) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxWidth) + " (" + limits.widthLimit + ")");
+    if (h > limits.maxHeight)
+        throw UsageError(sizeFlag + " " + size + ": the height " + std::to_string(h) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxHeight) + " (" + limits.heightLimit + ")");
+    if (samples && *samples > limits.maxSamples)
+        throw UsageError("--samples " + std::to_string(*samples) + " is beyond this OpenGL's limit of " +
+                         std::to_string(limits.maxSamples) + " (GL_MAX_SAMPLES)");
+}
 
 }  // namespace mipgloss::app

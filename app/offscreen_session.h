@@ -7,6 +7,7 @@
 #include <QGuiApplication>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace mipgloss::app {
@@ -28,5 +29,10 @@ private:
     std::unique_ptr<QGuiApplication> app_;
     std::unique_ptr<ui::OffscreenRenderer> renderer_;
 };
+
+// Refuses, before anything is drawn, a size or a sample count this OpenGL cannot draw
+// (RenderSizeLimits), naming the flag, the value and the limit: a UsageError.
+void checkRenderSize(const ui::OffscreenRenderer& renderer, const std::string& sizeFlag, int w, int h,
+                     std::optional<int> samples);
 
 }  // namespace mipgloss::app

@@ -1,11 +1,13 @@
 #include "render_command.h"
 
-#include "frame_pattern.h"
+#include "cli_report.h"
 #include "material_args.h"
 #include "offscreen_session.h"
+#include "render_options.h"
 
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/asset.h"
+#include "mipgloss/scene/chain_needs.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
 #include "mipgloss/scene/lobes.h"
@@ -31,12 +33,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -153,48 +153,6 @@ std::vector<std::shared_ptr<const LobeStackEntry>> lobeStackFor(const PreparedEn
     return lobes;
 }
 
-// --size WxH: two whole numbers of at least 1, or a UsageError naming the flag and the value. What
-// the OpenGL can draw is checked once a context exists (checkRenderSize).
-void parseSize(const std::string& flag, const std::string& text, int& w, int& h) {
-    const auto x = text.find('x');
-    auto whole = [&](const std::string& part, const char* axis) {
-        char* end = nullptr;
-        errno = 0;
-        const long long v = part.empty() ? 0 : std::strtoll(part.c_str(), &end, 10);
-        if (part.empty() || *end != '\0' || errno == ERANGE || v > 1'000'000'000)
-            throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
-        if (v < 1) throw UsageError(flag + " " + text + ": the " + axis + " " + part + " must be at least 1");
-        return static_cast<int>(v);
-    };
-    if (x == std::string::npos)
-        throw UsageError(flag + " needs WxH, two whole numbers such as 800x600, got '" + text + "'");
-    w = whole(text.substr(0, x), "width");
-    h = whole(text.substr(x + 1), "height");
-}
-
-// Refuses, before anything is drawn, a size or a sample count this OpenGL cannot draw
-// (RenderSizeLimits), naming the flag, the value and the limit.
-void checkRenderSize(const ui::OffscreenRenderer& renderer, const std::string& sizeFlag, int w, int h,
-                     std::optional<int> samples) {
-    const ui::RenderSizeLimits limits = renderer.maxRenderSize();
-    const std::string size = std::to_string(w) + "x" + std::to_string(h);
-    if (w > limits.maxWidth)
-        throw UsageError(sizeFlag + " " + size + ": the width " + std::to_string(w) + " is beyond this OpenGL's limit of " +
-                         std::to_string(limits.maxWidth) + " (" + limits.widthLimit + ")");
-    if (h > limits.maxHeight)
-        throw UsageError(sizeFlag + " " + size + ": the height " + std::to_string(h) + " is beyond this OpenGL's limit of " +
-                         std::to_string(limits.maxHeight) + " (" + limits.heightLimit + ")");
-    if (samples && *samples > limits.maxSamples)
-        throw UsageError("--samples " + std::to_string(*samples) + " is beyond this OpenGL's limit of " +
-                         std::to_string(limits.maxSamples) + " (GL_MAX_SAMPLES)");
-}
-
-std::string lowerExtension(const fs::path& file) {
-    std::string s = file.extension().string();
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 // An output picture's format from its extension: .exr (linear float) or one Qt writes, else a
 // UsageError naming the flag (checked before anything is drawn).
 void checkImageFormat(const std::string& flag, const fs::path& file) {
@@ -297,15 +255,11 @@ Picture besideEachOther(Picture left, const Picture& right) {
     return left;
 }
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Entry `name` of library `file`. Throws LibraryFileError naming the file.
 LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
     ui::LibraryFileReport report;
     const MaterialLibrary library = ui::loadLibrary(file, &report);
-    for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+    printWarnings(report.warnings);
     if (const LibraryMaterial* entry = library.find(name)) return *entry;
     std::string names;
     for (const LibraryMaterial& e : library.entries) names += (names.empty() ? "\"" : ", \"") + e.name + "\"";
@@ -314,196 +268,164 @@ LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
                   (names.empty() ? std::string(" (the library is empty)") : " (there are " + names + ")"));
 }
 
-}  // namespace
-
-int runRender(Args args, const char* argv0) {
-    std::optional<fs::path> scenePath, envPath, outPath;
-    std::vector<fs::path> meshPaths;
-    std::optional<float> lambda, exposure, backgroundLambda, yaw, pitch;
-    std::optional<fs::path> aovPath, libraryPath;
-    std::optional<std::string> libraryMaterial;
-    std::optional<LookupMode> mode;
-    std::string lambdaFlag;
-    LayerFlags layerFlags;
-    std::optional<ToneMap> toneMap;
-    std::optional<int> envSize, samples;
-    std::optional<Builder> builder;
-    bool noBackground = false, quiet = false, noSettle = false, noStack = false;
-    int width = 0, height = 0;
-    std::optional<float> spin;
-    std::optional<int> turntable;
-    TurntableSpin spinKind = TurntableSpin::Object;
-    std::optional<Builder> compareBuilder;
-    std::optional<fs::path> compareEnv;
-    while (!args.empty()) {
-        const std::string a = args.next();
-        auto value = [&] { return args.value(a); };
-        if (a == "--env") envPath = value();
-        else if (a == "--mesh") meshPaths.emplace_back(value());
-        else if (a == "--out") outPath = value();
-        else if (a == "--lambda") lambda = parseLambda(a, value()), lambdaFlag = a;
-        else if (a == "--exponent") lambda = parseExponentAsLambda(a, value()), lambdaFlag = a;
-        else if (readLayerFlag(a, value, layerFlags)) continue;
-        else if (a == "--library") libraryPath = value();
-        else if (a == "--material") libraryMaterial = value();
-        else if (a == "--aov") aovPath = value();
-        else if (a == "--exposure") exposure = parseFloat(a, value(), -kMaxExposureEv, kMaxExposureEv);
-        else if (a == "--background-lambda") backgroundLambda = parseLambda(a, value());
-        else if (a == "--yaw") yaw = parseFloat(a, value(), -360.0f, 360.0f);
-        else if (a == "--pitch") pitch = parseFloat(a, value(), -89.0f, 89.0f);
-        else if (a == "--env-size") envSize = static_cast<int>(parseFloat(a, value(), 1.0f, 4096.0f));
-        else if (a == "--samples") samples = static_cast<int>(parseFloat(a, value(), 0.0f, 16.0f));
-        else if (a == "--builder" || a == "--method") {
-            const std::string name = value();
-            Builder b;
-            if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "'");
-            builder = b;
-        } else if (a == "--mode") {
-            mode = parseMode(a, value());
-        } else if (a == "--tonemap") {
-            ToneMap t;
-            if (!parseToneMap(value(), t)) throw UsageError("--tonemap is linear, reinhard or aces");
-            toneMap = t;
-        } else if (a == "--size") {
-            parseSize(a, value(), width, height);
-        } else if (a == "--spin") {
-            spin = parseFloat(a, value(), -36000.0f, 36000.0f);
-        } else if (a == "--turntable") {
-            const std::string v = value();
-            char* end = nullptr;
-            errno = 0;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end != '\0' || errno == ERANGE || n < 1 || n > 3600)
-                throw UsageError("--turntable needs a whole number of frames from 1 to 3600, got '" + v + "'");
-            turntable = static_cast<int>(n);
-        } else if (a == "--turntable-spin") {
-            const std::string v = value();
-            if (!parseTurntableSpin(v, spinKind))
-                throw UsageError("--turntable-spin is object or environment, got '" + v + "'");
-        } else if (a == "--compare-builder") {
-            const std::string name = value();
-            Builder b;
-            if (!parseBuilder(name, b)) throw UsageError("unknown builder '" + name + "' for --compare-builder");
-            compareBuilder = b;
-        } else if (a == "--compare-env") {
-            compareEnv = value();
-        } else if (a == "--no-background") noBackground = true;
-        else if (a == "--quiet") quiet = true;
-        else if (a == "--no-settle") noSettle = true;
-        else if (a == "--no-stack") noStack = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (!scenePath) scenePath = a;
-        else throw UsageError("more than one scene given");
-    }
-    if (!outPath) throw UsageError("render needs --out IMAGE");
-    if (libraryPath.has_value() != libraryMaterial.has_value())
-        throw UsageError("--library LIB.mglib and --material NAME go together");
-    const bool compare = compareBuilder || compareEnv;
-    const char* const compareFlag = compareBuilder ? "--compare-builder" : "--compare-env";
-    if (compare && turntable) throw UsageError(std::string(compareFlag) + " and --turntable do not go together (one picture or a turn)");
-    if (compare && aovPath) throw UsageError(std::string(compareFlag) + " and --aov do not go together (the AOV of which half?)");
-    if (turntable && aovPath) throw UsageError("--turntable and --aov do not go together");
-    if (noSettle && noStack) throw UsageError("--no-settle and --no-stack do not go together (the stack ahead, or none?)");
-    // With --turntable, --out names the frames (frame_pattern.h); the first frame's name stands
-    // for all of them in the checks below.
-    FramePattern frames;
-    if (turntable) {
-        if (const std::string problem = parseFramePattern(outPath->string(), frames); !problem.empty())
-            throw UsageError("--out " + outPath->string() + " with --turntable: " + problem);
-    }
-    const fs::path firstOut = turntable ? fs::path(frames.format(0)) : *outPath;
-    checkImageFormat("--out", firstOut);
-    // Read before the OpenGL session starts, so a bad library is reported at once.
-    const std::optional<LibraryMaterial> libraryMaterialEntry =
-        libraryPath ? std::optional(libraryEntry(*libraryPath, *libraryMaterial)) : std::nullopt;
-    OffscreenSession session(argv0, "render");
-    ui::OffscreenRenderer& renderer = session.renderer();
-    // Before anything is loaded or drawn: what the OpenGL cannot draw, and a folder that cannot
-    // take the pictures.
-    checkRenderSize(renderer, "--size", width, height, samples);
-    checkWritableFolder(firstOut);
-    if (aovPath) checkWritableFolder(*aovPath);
-
-    // The scene: a file, meshes, the environment alone, or the default.
+// The scene `options` ask for: a file, meshes, the environment alone, or the default (whose
+// picture is 1024x384 unless --size says), with the flags' changes made. Warnings on stderr.
+Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>& libraryMaterial, int& width,
+                    int& height) {
     Scene scene;
-    if (scenePath) {
+    if (o.scene) {
         ui::SceneFileReport report;
-        scene = ui::loadScene(*scenePath, &report);
-        if (!quiet)
-            for (const std::string& w : report.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
-    } else if (!meshPaths.empty() || envPath) {
+        scene = ui::loadScene(*o.scene, &report);
+        printWarnings(report.warnings, o.quiet);
+    } else if (!o.meshes.empty() || o.environment) {
         scene.display = DisplaySettings{};
     } else {
         scene = makeFigure1Scene();
         if (width == 0) width = 1024, height = 384;
     }
-    if (!meshPaths.empty()) {
+    if (width == 0) width = 800, height = 600;
+    if (!o.meshes.empty()) {
         scene.objects.clear();
         float cursor = 0.0f;
-        for (const fs::path& p : meshPaths) {
+        for (const fs::path& p : o.meshes) {
             // An asset (glTF, OBJ with MTL) brings its parts and materials; a plain mesh is one part.
             const Asset asset = loadAsset(p);
-            if (!quiet)
-                for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
+            printWarnings(asset.warnings, o.quiet);
             addAsset(scene, asset, p.string(), nextInRow(assetBounds(asset), cursor), Material{});
         }
     }
-    if (libraryMaterialEntry) {
+    if (libraryMaterial) {
         // One material, shared by every object; the scene's own go.
         scene.materials.clear();
-        const MaterialId id =
-            scene.addMaterial(libraryMaterialEntry->name, libraryMaterialEntry->material, libraryMaterialEntry->name);
+        const MaterialId id = scene.addMaterial(libraryMaterial->name, libraryMaterial->material, libraryMaterial->name);
         for (SceneObject& object : scene.objects) object.material = id;
     }
-    if (envPath) scene.environment.source = envPath->string();
-    if (envSize) scene.environment.faceSize = *envSize;
-    if (builder) scene.environment.builder = *builder;
+    if (o.environment) scene.environment.source = o.environment->string();
+    if (o.envSize) scene.environment.faceSize = *o.envSize;
+    if (o.builder) scene.environment.builder = *o.builder;
     for (NamedMaterial& m : scene.materials) {
         // With a layer flag every material is layered, --lambda/--exponent its specular lobe.
-        if (layerFlags.any() || (lambda && m.material.layered)) {
-            applyLayerFlags(layerFlags, lambda, lambdaFlag, m.material);
-        } else if (lambda) {
-            m.material.lambda = *lambda;
+        if (o.layers.any() || (o.lambda && m.material.layered)) {
+            applyLayerFlags(o.layers, o.lambda, o.lambdaFlag, m.material);
+        } else if (o.lambda) {
+            m.material.lambda = *o.lambda;
         }
-        if (mode) m.material.mode = *mode;
+        if (o.mode) m.material.mode = *o.mode;
     }
-    if (exposure) scene.display.exposureEv = *exposure;
-    if (toneMap) scene.display.toneMap = *toneMap;
-    if (backgroundLambda) scene.display.backgroundLambda = *backgroundLambda;
-    if (noBackground) scene.display.showBackground = false;
-    if (samples) scene.display.samples = *samples;
-    if (width == 0) width = 800, height = 600;
-    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    if (o.exposure) scene.display.exposureEv = *o.exposure;
+    if (o.toneMap) scene.display.toneMap = *o.toneMap;
+    if (o.backgroundLambda) scene.display.backgroundLambda = *o.backgroundLambda;
+    if (o.noBackground) scene.display.showBackground = false;
+    if (o.samples) scene.display.samples = *o.samples;
+    return scene;
+}
+
+// The scene's own camera (its field of view and framing as saved; --size gives the aspect),
+// unless its objects were replaced; else framed. --yaw/--pitch frame again from there.
+OrbitCamera cameraToRender(const RenderOptions& o, const Scene& scene, float aspect) {
+    OrbitCamera camera = scene.camera && o.meshes.empty() ? *scene.camera : framingCamera(scene, aspect);
+    if (o.yaw || o.pitch) {
+        if (o.yaw) camera.yawDegrees = *o.yaw;
+        if (o.pitch) camera.pitchDegrees = *o.pitch;
+        camera.frame(sceneBounds(scene), aspect);
+    }
+    return camera;
+}
+
+// --aov: the single-lobe account, and for a scene with a layered material each layer's (render's
+// usage text): X.dirX X.dirY X.dirZ X.exponent X.weight.R X.weight.G X.weight.B, and NdotV.
+void writeAov(const ui::AovImage& aov, const fs::path& file) {
+    std::vector<std::string> names{"dirX", "dirY", "dirZ", "exponent", "exact"};
+    const std::pair<const char*, const ui::AovImage::Layer*> layers[] = {
+        {"diffuse", &aov.diffuse}, {"specular", &aov.specular}, {"coat", &aov.coat}};
+    if (aov.layered) {
+        for (const auto& [layer, data] : layers)
+            for (const char* field : {".dirX", ".dirY", ".dirZ", ".exponent", ".weight.R", ".weight.G", ".weight.B"})
+                names.push_back(std::string(layer) + field);
+        names.push_back("NdotV");
+    }
+    std::vector<float> values;
+    values.reserve(static_cast<std::size_t>(aov.width) * static_cast<std::size_t>(aov.height) * names.size());
+    for (int y = aov.height - 1; y >= 0; --y)
+        for (int x = 0; x < aov.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(aov.width) + static_cast<std::size_t>(x);
+            values.insert(values.end(), {aov.direction[i].x, aov.direction[i].y, aov.direction[i].z, aov.exponent[i], aov.exact[i]});
+            if (!aov.layered) continue;
+            for (const auto& [layer, data] : layers) {
+                const glm::vec3& d = data->direction[i];
+                const glm::vec3& w = data->weight[i];
+                values.insert(values.end(), {d.x, d.y, d.z, data->exponent[i], w.r, w.g, w.b});
+            }
+            values.push_back(aov.cosView[i]);
+        }
+    writeFloatChannels(file, aov.width, aov.height, names, values);
+}
+
+// How long the work before the first picture took.
+struct PrepareTimes {
+    double textures = 0.0, environment = 0.0, lobes = 0.0;
+};
+
+// The status line: `counters` are those of the render that was plain (a comparison's left half).
+void reportRender(const std::string& what, const std::string& extra, int width, int height, const Scene& scene,
+                  const PreparedEnvironment& environment, std::size_t lobes, const PrepareTimes& times,
+                  const ui::RenderCounters& c, const ui::OffscreenRenderer& renderer) {
+    std::cerr << "mipgloss: " << what << ": " << width << "x" << height << ", " << scene.objects.size()
+              << " objects (" << c.objectsDrawn << " drawn, " << c.objectsCulled
+              << " culled), environment " << environment.settings.faceSize << "² "
+              << builderName(environment.settings.builder) << " filtered through level "
+              << environment.lastFilteredLevel << " of " << environment.levelCount() - 1
+              << (environment.irradiance ? ", irradiance" : "") << ", " << lobes
+              << " lobe stack entries made in " << times.lobes << " s (" << static_cast<double>(c.stackBytes) / 1e6
+              << " MB on the GPU; " << c.objectsSettled
+              << " objects settled), environment prepared in " << times.environment << " s"
+              << (c.textureUploads > 0 ? ", " + std::to_string(sharedTextureCache().images()) + " textures decoded in " +
+                                             std::to_string(times.textures) + " s (" +
+                                             std::to_string(c.textureBytes / 1000000) + " MB on the GPU)"
+                                       : std::string())
+              << extra << "; "
+              << renderer.glDescription() << '\n';
+}
+
+}  // namespace
+
+int runRender(Args args, const char* argv0) {
+    const RenderOptions o = parseRenderOptions(std::move(args));
+    const fs::path firstOut = o.firstOut();
+    checkImageFormat("--out", firstOut);
+    // Read before the OpenGL session starts, so a bad library is reported at once.
+    const std::optional<LibraryMaterial> libraryMaterialEntry =
+        o.library ? std::optional(libraryEntry(*o.library, *o.libraryMaterial)) : std::nullopt;
+    OffscreenSession session(argv0, "render");
+    ui::OffscreenRenderer& renderer = session.renderer();
+    // Before anything is loaded or drawn: what the OpenGL cannot draw, and a folder that cannot
+    // take the pictures.
+    int width = o.width, height = o.height;
+    checkRenderSize(renderer, "--size", width, height, o.samples);
+    checkWritableFolder(firstOut);
+    if (o.aov) checkWritableFolder(*o.aov);
+    Scene scene = sceneToRender(o, libraryMaterialEntry, width, height);
     const bool linear = lowerExtension(firstOut) == ".exr";
 
     // The materials' texture maps, decoded on worker threads (textures.h); one that cannot be read
     // is a warning, and the maps reading it are drawn without it.
+    PrepareTimes times;
     const auto texturesStart = std::chrono::steady_clock::now();
-    for (const std::string& w : sharedTextureCache().load(texturesOf(scene)))
-        if (!quiet) std::cerr << "mipgloss: warning: " << w << '\n';
-    const double textureSeconds = secondsSince(texturesStart);
+    printWarnings(sharedTextureCache().load(texturesOf(scene)), o.quiet);
+    times.textures = secondsSince(texturesStart);
 
     const auto start = std::chrono::steady_clock::now();
     auto environment = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-    const double prepareSeconds = secondsSince(start);
-    if (!quiet)
-        for (const std::string& w : environment->report.warnings)
-            std::cerr << "mipgloss: warning: " << w << '\n';
+        prepareEnvironment(scene.environment, chainNeeds(scene, scene.environment.faceSize)));
+    times.environment = secondsSince(start);
+    printWarnings(environment->report.warnings, o.quiet);
 
-    // The scene's own camera (its field of view and framing as saved; --size gives the aspect),
-    // unless its objects were replaced; else framed. --yaw/--pitch frame again from there.
-    OrbitCamera camera = scene.camera && meshPaths.empty() ? *scene.camera : framingCamera(scene, aspect);
-    if (yaw || pitch) {
-        if (yaw) camera.yawDegrees = *yaw;
-        if (pitch) camera.pitchDegrees = *pitch;
-        camera.frame(sceneBounds(scene), aspect);
-    }
+    const OrbitCamera camera = cameraToRender(o, scene, static_cast<float>(width) / static_cast<float>(height));
     const float rotation = scene.display.environmentRotationDegrees;
     // The scene turned by `degrees` (turntable.h): the camera to draw through, the scene's
     // environment rotation set to match.
     auto turned = [&](double degrees) {
-        const TurnedView view = turnedView(camera, rotation, spinKind, static_cast<float>(degrees));
+        const TurnedView view = turnedView(camera, rotation, o.spinKind, static_cast<float>(degrees));
         scene.display.environmentRotationDegrees = view.environmentRotationDegrees;
         return view.camera;
     };
@@ -512,293 +434,63 @@ int runRender(Args args, const char* argv0) {
     // changes no lobe.
     const auto lobesStart = std::chrono::steady_clock::now();
     const std::vector<std::shared_ptr<const LobeStackEntry>> lobes =
-        lobeStackFor(*environment, scene, noSettle, noStack);
-    const double lobeSeconds = secondsSince(lobesStart);
+        lobeStackFor(*environment, scene, o.noSettle, o.noStack);
+    times.lobes = secondsSince(lobesStart);
     renderer.setLobes(lobes);
-    // The status line, with the counters of the render that was `plain` (a comparison's left half).
     ui::RenderCounters plainCounters;
-    auto report = [&](const std::string& what, const std::string& extra) {
-        if (quiet) return;
-        const ui::RenderCounters& c = plainCounters;
-        std::cerr << "mipgloss: " << what << ": " << width << "x" << height << ", " << scene.objects.size()
-                  << " objects (" << c.objectsDrawn << " drawn, " << c.objectsCulled
-                  << " culled), environment " << environment->settings.faceSize << "² "
-                  << builderName(environment->settings.builder) << " filtered through level "
-                  << environment->lastFilteredLevel << " of " << environment->levelCount() - 1
-                  << (environment->irradiance ? ", irradiance" : "") << ", " << lobes.size()
-                  << " lobe stack entries made in " << lobeSeconds << " s (" << static_cast<double>(c.stackBytes) / 1e6
-                  << " MB on the GPU; " << c.objectsSettled
-                  << " objects settled), environment prepared in " << prepareSeconds << " s"
-                  << (c.textureUploads > 0 ? ", " + std::to_string(sharedTextureCache().images()) + " textures decoded in " +
-                                                 std::to_string(textureSeconds) + " s (" +
-                                                 std::to_string(c.textureBytes / 1000000) + " MB on the GPU)"
-                                           : std::string())
-                  << extra << "; "
-                  << renderer.glDescription() << '\n';
+    auto report = [&](const std::string& extra) {
+        if (!o.quiet)
+            reportRender(o.out->string(), extra, width, height, scene, *environment, lobes.size(), times, plainCounters,
+                         renderer);
     };
 
-    if (turntable) {
+    std::ostringstream extra;
+    if (o.turntable) {
         // N frames of a whole turn: frame i at --spin + 360·i/N, so the last is one step before
         // the first and the loop is seamless.
         const auto framesStart = std::chrono::steady_clock::now();
-        const double first = spin.value_or(0.0f);
-        for (int i = 0; i < *turntable; ++i) {
-            const double degrees = first + 360.0 * i / *turntable;
-            const fs::path file = frames.format(i);
+        for (int i = 0; i < *o.turntable; ++i) {
+            const double degrees = o.spin.value_or(0.0f) + 360.0 * i / *o.turntable;
+            const fs::path file = o.frames.format(i);
             writePicture(draw(renderer, scene, turned(degrees), environment, width, height, linear, file), file);
             plainCounters = renderer.counters();
-            if (!quiet)
-                std::cerr << "mipgloss: frame " << i + 1 << "/" << *turntable << " (" << degrees << "°): "
+            if (!o.quiet)
+                std::cerr << "mipgloss: frame " << i + 1 << "/" << *o.turntable << " (" << degrees << "°): "
                           << file.string() << '\n';
         }
         const double framesSeconds = secondsSince(framesStart);
-        std::ostringstream extra;
-        extra << "; " << *turntable << " frames, " << turntableSpinName(spinKind) << " spin, in " << framesSeconds
-              << " s (" << framesSeconds / *turntable << " s a frame)";
-        report(outPath->string(), extra.str());
+        extra << "; " << *o.turntable << " frames, " << turntableSpinName(o.spinKind) << " spin, in " << framesSeconds
+              << " s (" << framesSeconds / *o.turntable << " s a frame)";
+        report(extra.str());
         return 0;
     }
 
-    const OrbitCamera view = spin ? turned(*spin) : camera;
+    const OrbitCamera view = o.spin ? turned(*o.spin) : camera;
     const auto drawStart = std::chrono::steady_clock::now();
-    Picture picture = draw(renderer, scene, view, environment, width, height, linear, *outPath);
+    Picture picture = draw(renderer, scene, view, environment, width, height, linear, *o.out);
     plainCounters = renderer.counters();
-    std::ostringstream extra;
-    if (compare) {
+    if (o.compare()) {
         // The right half: the same scene and camera, the environment built the other way (or
         // from the other file) at the same face size, its own lobe stack made for it.
         EnvironmentSettings other = scene.environment;
-        if (compareBuilder) other.builder = *compareBuilder;
-        if (compareEnv) other.source = compareEnv->string();
+        if (o.compareBuilder) other.builder = *o.compareBuilder;
+        if (o.compareEnv) other.source = o.compareEnv->string();
         const auto otherStart = std::chrono::steady_clock::now();
         auto otherEnvironment = std::make_shared<const PreparedEnvironment>(
-            prepareEnvironment(other, needsFor(scene, other.faceSize)));
-        if (!quiet)
-            for (const std::string& w : otherEnvironment->report.warnings)
-                std::cerr << "mipgloss: warning: " << w << '\n';
-        renderer.setLobes(lobeStackFor(*otherEnvironment, scene, noSettle, noStack));
+            prepareEnvironment(other, chainNeeds(scene, other.faceSize)));
+        printWarnings(otherEnvironment->report.warnings, o.quiet);
+        renderer.setLobes(lobeStackFor(*otherEnvironment, scene, o.noSettle, o.noStack));
         const double otherSeconds = secondsSince(otherStart);
         picture = besideEachOther(std::move(picture), draw(renderer, scene, view, otherEnvironment, width, height,
-                                                           linear, *outPath));
-        extra << "; right half: environment " << (compareEnv ? compareEnv->string() : other.source) << " "
+                                                           linear, *o.out));
+        extra << "; right half: environment " << (o.compareEnv ? o.compareEnv->string() : other.source) << " "
               << builderName(other.builder) << ", prepared with its lobe stack in " << otherSeconds << " s";
     }
-    writePicture(picture, *outPath);
-    if (spin) extra << "; " << turntableSpinName(spinKind) << " spin " << *spin << "°";
+    writePicture(picture, *o.out);
+    if (o.spin) extra << "; " << turntableSpinName(o.spinKind) << " spin " << *o.spin << "°";
     extra << "; drawn and written in " << secondsSince(drawStart) << " s";
-    if (aovPath) {
-        const ui::AovImage aov = renderer.renderAov(scene, view, environment, width, height);
-        // The single-lobe account, and for a scene with a layered material each layer's (render's
-        // usage text): X.dirX X.dirY X.dirZ X.exponent X.weight.R X.weight.G X.weight.B, and NdotV.
-        std::vector<std::string> names{"dirX", "dirY", "dirZ", "exponent", "exact"};
-        const std::pair<const char*, const ui::AovImage::Layer*> layers[] = {
-            {"diffuse", &aov.diffuse}, {"specular", &aov.specular}, {"coat", &aov.coat}};
-        if (aov.layered) {
-            for (const auto& [layer, data] : layers)
-                for (const char* field : {".dirX", ".dirY", ".dirZ", ".exponent", ".weight.R", ".weight.G", ".weight.B"})
-                    names.push_back(std::string(layer) + field);
-            names.push_back("NdotV");
-        }
-        std::vector<float> values;
-        values.reserve(static_cast<std::size_t>(aov.width) * static_cast<std::size_t>(aov.height) * names.size());
-        for (int y = aov.height - 1; y >= 0; --y)
-            for (int x = 0; x < aov.width; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(aov.width) + static_cast<std::size_t>(x);
-                values.insert(values.end(), {aov.direction[i].x, aov.direction[i].y, aov.direction[i].z, aov.exponent[i], aov.exact[i]});
-                if (!aov.layered) continue;
-                for (const auto& [layer, data] : layers) {
-                    const glm::vec3& d = data->direction[i];
-                    const glm::vec3& w = data->weight[i];
-                    values.insert(values.end(), {d.x, d.y, d.z, data->exponent[i], w.r, w.g, w.b});
-                }
-                values.push_back(aov.cosView[i]);
-            }
-        writeFloatChannels(*aovPath, aov.width, aov.height, names, values);
-    }
-    report(outPath->string(), extra.str());
-    return 0;
-}
-
-namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-// A big mesh: load time, first frame (with the upload) and steady frame time, with and without
-// multisampling: is it interactive?
-// Every byte of `files`, read as a program that does nothing with them would: the floor under
-// any load time.
-double readMilliseconds(const std::vector<fs::path>& files, std::uintmax_t& bytes) {
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<char> buffer(1 << 20);
-    bytes = 0;
-    for (const fs::path& f : files) {
-        std::ifstream in(f, std::ios::binary);
-        while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
-            bytes += static_cast<std::uintmax_t>(in.gcount());
-    }
-    return millisecondsSince(start);
-}
-
-int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int frames, int width, int height) {
-    // An asset's files: itself (a .gltf's .bin buffers are read by the load below, not here) and
-    // its external textures; the time to read them is what "on screen" is compared with.
-    auto start = std::chrono::steady_clock::now();
-    const Asset asset = loadAsset(path);
-    const double loadMs = millisecondsSince(start);
-    for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
-    Scene scene;
-    Material material;
-    material.lambda = 3.0f;
-    addAsset(scene, asset, path.string(), Transform{}, material);
-    std::vector<fs::path> files{path};
-    for (const TextureRef& t : texturesOf(scene))
-        if (t.image < 0) files.push_back(t.file);
-    std::uintmax_t bytes = 0;
-    const double readMs = readMilliseconds(files, bytes);
-    start = std::chrono::steady_clock::now();
-    for (const std::string& w : sharedTextureCache().load(texturesOf(scene))) std::cerr << "mipgloss: warning: " << w << '\n';
-    const double decodeMs = millisecondsSince(start);
-    std::size_t triangles = 0, vertices = 0;
-    for (const SceneObject& o : scene.objects) triangles += o.mesh->triangleCount(), vertices += o.mesh->vertexCount();
-    auto environment = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
-    OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
-    start = std::chrono::steady_clock::now();
-    renderer.render(scene, camera, environment, width, height);
-    renderer.finish();
-    const double firstMs = millisecondsSince(start);
-    const double onScreenMs = loadMs + decodeMs + firstMs;
-    std::cout << "renderer: " << renderer.glDescription() << "\n"
-              << path.string() << ": " << triangles << " triangles, " << vertices << " vertices, "
-              << scene.objects.size() << " parts, " << sharedTextureCache().images() << " textures ("
-              << sharedTextureCache().bytes() / 1000000 << " MB decoded)\n"
-              << "read the files alone (" << files.size() << " files, " << bytes / 1000000 << " MB): " << readMs << " ms\n"
-              << "load (parse, validate, normals, tangents): " << loadMs << " ms\n"
-              << "decode textures (OpenImageIO, in parallel): " << decodeMs << " ms\n"
-              << "first frame (with uploads and mipmaps): " << firstMs << " ms\n"
-              << "on screen in " << onScreenMs << " ms = " << onScreenMs / std::max(readMs, 1e-3)
-              << " x the time to read its files\n";
-    for (const int samples : {4, 0}) {
-        scene.display.samples = samples;
-        renderer.render(scene, camera, environment, width, height);
-        start = std::chrono::steady_clock::now();
-        for (int f = 0; f < frames; ++f) {
-            camera.orbit(2.0f, 0.0f);  // a turning view, as when the user drags
-            renderer.render(scene, camera, environment, width, height);
-            renderer.finish();
-        }
-        std::cout << "frame, " << (samples ? "4x MSAA" : "no MSAA") << ", " << width << "x" << height
-                  << ": " << millisecondsSince(start) / frames << " ms\n";
-    }
-    std::cout << "texture uploads: " << renderer.counters().textureUploads << ", mesh uploads: "
-              << renderer.counters().meshUploads << '\n';
-    return 0;
-}
-
-}  // namespace
-
-int runRenderBench(Args args, const char* argv0) {
-    int objects = 16, frames = 20, width = 960, height = 540;
-    std::optional<fs::path> meshPath;
-    bool million = false;
-    while (!args.empty()) {
-        const std::string a = args.next();
-        auto value = [&] { return args.value(a); };
-        if (a == "--mesh") meshPath = value();
-        else if (a == "--million") million = true;
-        else if (a == "--objects") objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
-        else if (a == "--frames") frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
-        else if (a == "--size") {
-            parseSize(a, value(), width, height);
-        } else throw UsageError("unknown option '" + a + "'");
-    }
-    OffscreenSession session(argv0, "bench-render");
-    ui::OffscreenRenderer& renderer = session.renderer();
-    checkRenderSize(renderer, "--size", width, height, std::nullopt);
-    if (million) {
-        // A 1M-triangle sphere written as binary PLY, then loaded like any user file.
-        const fs::path file = fs::temp_directory_path() / ("mipgloss-million-" + std::to_string(::getpid()) + ".ply");
-        writeMesh(makeSphere(500, 1000), file);
-        const int status = benchOneMesh(renderer, file, frames, width, height);
-        fs::remove(file);
-        return status;
-    }
-    if (meshPath) return benchOneMesh(renderer, *meshPath, frames, width, height);
-    Scene scene;
-    auto teapot = std::make_shared<const Mesh>(defaultTeapot());
-    for (int i = 0; i < objects; ++i) {
-        SceneObject o;
-        o.name = "teapot " + std::to_string(i);
-        o.mesh = teapot;
-        o.transform = inGrid(teapot->bounds, i, objects);
-        scene.addObject(std::move(o), Material{});
-    }
-    auto environment = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, ChainNeeds{7, false}));
-    const OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
-    auto timeFrames = [&](Scene& s) {
-        renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
-        renderer.finish();
-        const auto start = std::chrono::steady_clock::now();
-        for (int f = 0; f < frames; ++f) {
-            renderer.render(s, camera, environment, width, height);
-            renderer.finish();
-        }
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-               frames;
-    };
-    std::cout << "renderer: " << renderer.glDescription() << "\n"
-              << objects << " teapots (" << objects * teapot->triangleCount() << " triangles), "
-              << width << "x" << height << ", " << frames << " frames each, glFinish per frame\n";
-    // Three cases, interleaved three times, medians kept (the VM's timing noise is large):
-    //   shared   every object λ = 3 (one sampler)
-    //   distinct λ = 3 + i/512: one sampler per object, the same levels sampled, so the
-    //            difference is the per-object state change alone (the paper's claim)
-    //   spread   λ from 0 to 7: also what the texture cache sees changes
-    auto setLambdas = [&](auto lambdaOf) {
-        for (int i = 0; i < objects; ++i)
-            scene.materialOf(scene.objects[static_cast<std::size_t>(i)]).lambda = lambdaOf(i);
-    };
-    // And the layered material (layered.h) at the same scene: a plastic (diffuse + specular, two
-    // lookups) and a coated paint (three), every object the same material, λ of the specular 3.
-    auto setLayered = [&](bool on, float coat) {
-        for (int i = 0; i < objects; ++i) {
-            Material& m = scene.materialOf(scene.objects[static_cast<std::size_t>(i)]);
-            m.layered = on;
-            m.layers.baseColor = Rgb(0.7f, 0.1f, 0.05f);
-            m.layers.roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(3.0)));
-            m.layers.coat = coat;
-            m.layers.coatRoughness = 0.2f;
-        }
-    };
-    std::vector<double> shared, distinct, spread, plastic, coated;
-    for (int round = 0; round < 3; ++round) {
-        setLambdas([](int) { return 3.0f; });
-        shared.push_back(timeFrames(scene));
-        setLambdas([](int i) { return 3.0f + static_cast<float>(i) / 512.0f; });
-        distinct.push_back(timeFrames(scene));
-        setLambdas([&](int i) { return 7.0f * static_cast<float>(i) / static_cast<float>(std::max(objects - 1, 1)); });
-        spread.push_back(timeFrames(scene));
-        setLambdas([](int) { return 3.0f; });
-        setLayered(true, 0.0f);
-        plastic.push_back(timeFrames(scene));
-        setLayered(true, 1.0f);
-        coated.push_back(timeFrames(scene));
-        setLayered(false, 0.0f);
-    }
-    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated}) std::sort(v->begin(), v->end());
-    std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
-              << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
-              << distinct[1] / shared[1] << "\n"
-              << objects << " lambdas spread over 0..7:   " << spread[1] << " ms/frame  ratio "
-              << spread[1] / shared[1] << "\n"
-              << "layered, diffuse + specular:    " << plastic[1] << " ms/frame  ratio " << plastic[1] / shared[1]
-              << "\n"
-              << "layered, + clear coat:          " << coated[1] << " ms/frame  ratio " << coated[1] / shared[1]
-              << "\n"
-              << "samplers created: " << renderer.counters().samplersCreated << "\n";
+    if (o.aov) writeAov(renderer.renderAov(scene, view, environment, width, height), *o.aov);
+    report(extra.str());
     return 0;
 }
 

@@ -61,22 +61,28 @@ SeamStats seamStats(const CubeMap& level) {
     return s;
 }
 
-double fitExponent(const CubeMap& level, const CubeMap& base, double guess) {
-    auto cost = [&](double logN) {
-        return compareCubes(level, referenceConvolution(base, std::exp(logN), level.size(), 1e-8)).relRms;
-    };
-    double a = std::log(std::max(guess, 1e-3) / 16.0), b = std::log(std::max(guess, 1e-3) * 16.0);
+double goldenSectionMinimum(const std::function<double(double)>& cost, double a, double b, double tolerance,
+                            int maxSteps) {
     const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
     double c = b - phi * (b - a), d = a + phi * (b - a);
     double fc = cost(c), fd = cost(d);
-    for (int i = 0; i < 18; ++i) {
+    for (int step = 0; step < maxSteps && b - a > tolerance; ++step) {
         if (fc < fd) {
             b = d; d = c; fd = fc; c = b - phi * (b - a); fc = cost(c);
         } else {
             a = c; c = d; fc = fd; d = a + phi * (b - a); fd = cost(d);
         }
     }
-    return std::exp(0.5 * (a + b));
+    return 0.5 * (a + b);
+}
+
+double fitExponent(const CubeMap& level, const CubeMap& base, double guess) {
+    auto cost = [&](double logN) {
+        return compareCubes(level, referenceConvolution(base, std::exp(logN), level.size(), 1e-8)).relRms;
+    };
+    // 18 steps: the bracket [guess/16, guess·16] in log n shrunk to 5.5·φ^18 ≈ 1e-3.
+    return std::exp(goldenSectionMinimum(cost, std::log(std::max(guess, 1e-3) / 16.0),
+                                         std::log(std::max(guess, 1e-3) * 16.0), 0.0, 18));
 }
 
 std::vector<glm::vec3> uniformDirections(int count, unsigned seed) {

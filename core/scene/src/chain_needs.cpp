@@ -9,7 +9,8 @@
 
 namespace mipgloss {
 
-ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize) {
+ChainNeeds chainNeeds(const Scene& scene, int faceSize) {
+    const int baseFaceSize = std::max(faceSize, 1);
     ChainNeeds needs;
     const int last = lastReadLevel(baseFaceSize);
     // The deepest chain level some lobe in the scene is read at while λ moves (a fractional
@@ -35,7 +36,5 @@ ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize) {
     needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(deepest - 1e-9)));
     return needs;
 }
-
-ChainNeeds needsFor(const Scene& scene, int baseFaceSize) { return chainNeeds(scene, std::max(baseFaceSize, 1)); }
 
 }  // namespace mipgloss

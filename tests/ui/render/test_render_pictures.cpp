@@ -48,7 +48,7 @@ TEST(Figure1, DefaultSceneBlurGrowsWithLambdaAndDiffuseIsSmooth) {
     const Scene scene = makeFigure1Scene();
     ASSERT_EQ(scene.objects.size(), 4u);
     const auto env = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+        prepareEnvironment(scene.environment, chainNeeds(scene, scene.environment.faceSize)));
     EXPECT_EQ(env->settings.faceSize, 128);
     EXPECT_EQ(env->lastFilteredLevel, lastReadLevel(128)) << "λ = 7 (n = 2) reaches the last read level of a 128² chain";
     EXPECT_FALSE(env->irradiance) << "no object asks for the irradiance map";
@@ -180,7 +180,7 @@ TEST(Culling, ObjectsOutsideTheViewAreNotDrawn) {
     ASSERT_NE(renderer, nullptr) << error;
     Scene scene = makeFigure1Scene();
     const auto env = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+        prepareEnvironment(scene.environment, chainNeeds(scene, scene.environment.faceSize)));
     // Frame the first teapot alone: the other three are off to the right.
     OrbitCamera camera;
     camera.pitchDegrees = 0.0f;
@@ -273,7 +273,7 @@ SeamMeasure seamsOfDiffuseSphere(Builder builder, float lambda, QImage* picture,
     scene.display.toneMap = ToneMap::Reinhard;
     scene.environment.builder = builder;
     const auto env = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, needsFor(scene, scene.environment.faceSize)));
+        prepareEnvironment(scene.environment, chainNeeds(scene, scene.environment.faceSize)));
     const int w = 384, h = 384;
     renderer->setLobes(settled ? makeStackEntries(*env, scene) : std::vector<std::shared_ptr<const LobeStackEntry>>{});
     OrbitCamera camera;

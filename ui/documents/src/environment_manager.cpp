@@ -130,7 +130,7 @@ void EnvironmentManager::watch(SceneDocument* document) {
     auto update = [this] {
         if (!document_) return;
         const Scene& scene = document_->scene();
-        request(scene.environment, needsFor(scene, scene.environment.faceSize));
+        request(scene.environment, chainNeeds(scene, scene.environment.faceSize));
         scheduleLobes();
     };
     connect(document, &SceneDocument::environmentChanged, this, update);

@@ -4,6 +4,7 @@
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/cubemap.h"
 
+#include <functional>
 #include <vector>
 
 namespace mipgloss {
@@ -63,6 +64,12 @@ double relativeRms(const std::vector<Rgb>& test, const std::vector<Rgb>& truth);
 // `base` at `exponent` there (referenceLobeAt): relative RMS.
 double readError(const MipChain& chain, double lod, const CubeMap& base, double exponent,
                  const std::vector<glm::vec3>& directions);
+
+// The x in [a, b] where `cost` (unimodal there) is least: golden-section search (Kiefer 1953), the
+// bracket shrunk by φ = (√5 − 1)/2 per step, one new evaluation a step, until it is at most
+// `tolerance` wide or after `maxSteps` steps; the bracket's midpoint.
+double goldenSectionMinimum(const std::function<double(double)>& cost, double a, double b, double tolerance,
+                            int maxSteps = 1000);
 
 // Exponent n whose exact Phong convolution of `base`, sampled at the texel centres of a face of
 // `level.size()`, best matches `level` in relative RMS (golden-section search on log n within

@@ -13,15 +13,13 @@ namespace mipgloss {
 // levels are reached only by minification of small or distant objects, where the pixel footprint
 // is itself an average, and get the cheap box filter.
 // `irradiance`: some visible object in normal mode asks for the irradiance map.
+// A face size below 1 (a scene's not yet known) counts as 1. The filtered range only grows in
+// whole levels and, once built, is kept (see prepareEnvironment).
 struct ChainNeeds {
     int lastFilteredLevel = 0;
     bool irradiance = false;
     bool operator==(const ChainNeeds&) const = default;
 };
 ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize);
-
-// The same (a name kept for callers that hold a face size): the filtered range only grows in
-// whole levels and, once built, is kept (see prepareEnvironment).
-ChainNeeds needsFor(const Scene& scene, int baseFaceSize);
 
 }  // namespace mipgloss

@@ -29,9 +29,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliResult;
+using test::q;
 using test::runCli;
-
-QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 
 test::TestImage checker() {
     return test::makeImage(64, 64, 3, [](int x, int y) -> std::vector<std::uint8_t> {

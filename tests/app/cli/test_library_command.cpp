@@ -32,9 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliResult;
+using test::q;
 using test::runCli;
-
-QString q(const fs::path& p) { return QString::fromStdString(p.string()); }
 
 QByteArray readBytes(const fs::path& file) {
     QFile in(q(file));
@@ -343,7 +342,7 @@ TEST(LibraryCommand, RenderWithTheLibrarysMirrorIsSharperThanWithItsDiffuse) {
 // Five thumbnails named after their materials (file-name safe), none flat, the mirror's unlike
 // the diffuse one's and sharper, by the argument above (measured: neighbour steps 0.041 against
 // 0.0011 inside the sphere, mean |difference| 0.42 of the luminance range; bounds 5× and 0.05).
-TEST(LibraryCommand, ThumbnailsOnePngPerMaterial) {
+TEST(LibraryCommand, ThumbnailsWriteOnePngPerMaterial) {
     test::TempDir dir;
     const fs::path lib = dir / "lib.json";
     addFive(lib);

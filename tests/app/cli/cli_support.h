@@ -6,9 +6,13 @@
 #include <QString>
 #include <QStringList>
 
+#include <filesystem>
 #include <string>
 
 namespace mipgloss::test {
+
+// A path as one argument of the command line.
+inline QString q(const std::filesystem::path& p) { return QString::fromStdString(p.string()); }
 
 struct CliResult {
     int exitCode = -1;
