@@ -5,17 +5,18 @@
 #include "offscreen_session.h"
 
 #include "mipgloss/ibl/builders.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
 #include "mipgloss/scene/lobes.h"
 #include "mipgloss/io/image_file.h"
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "mipgloss/scene/placement.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/scene.h"
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/scene/turntable.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/library_file.h"
@@ -437,12 +438,14 @@ int runRender(Args args, const char* argv0) {
         scene = makeFigure1Scene();
         if (width == 0) width = 1024, height = 384;
     }
+    EncodedImages keptImages;  // the assets' embedded images, from the parse that read them
     if (!meshPaths.empty()) {
         scene.objects.clear();
         float cursor = 0.0f;
         for (const fs::path& p : meshPaths) {
             // An asset (glTF, OBJ with MTL) brings its parts and materials; a plain mesh is one part.
             const Asset asset = loadAsset(p);
+            keptImages.insert(asset.images.begin(), asset.images.end());
             if (!quiet)
                 for (const std::string& w : asset.warnings) std::cerr << "mipgloss: warning: " << w << '\n';
             addAsset(scene, asset, p.string(), nextInRow(assetBounds(asset), cursor), Material{});
@@ -479,7 +482,9 @@ int runRender(Args args, const char* argv0) {
     // The materials' texture maps, decoded on worker threads (textures.h); one that cannot be read
     // is a warning, and the maps reading it are drawn without it.
     const auto texturesStart = std::chrono::steady_clock::now();
-    for (const std::string& w : sharedTextureCache().load(texturesOf(scene)))
+    const auto textures = std::make_shared<TextureCache>();  // this command's
+    renderer.setTextures(textures);
+    for (const std::string& w : textures->load(texturesOf(scene), keptImages))
         if (!quiet) std::cerr << "mipgloss: warning: " << w << '\n';
     const double textureSeconds = secondsSince(texturesStart);
 
@@ -529,7 +534,7 @@ int runRender(Args args, const char* argv0) {
                   << " lobe stack entries made in " << lobeSeconds << " s (" << static_cast<double>(c.stackBytes) / 1e6
                   << " MB on the GPU; " << c.objectsSettled
                   << " objects settled), environment prepared in " << prepareSeconds << " s"
-                  << (c.textureUploads > 0 ? ", " + std::to_string(sharedTextureCache().images()) + " textures decoded in " +
+                  << (c.textureUploads > 0 ? ", " + std::to_string(textures->images()) + " textures decoded in " +
                                                  std::to_string(textureSeconds) + " s (" +
                                                  std::to_string(c.textureBytes / 1000000) + " MB on the GPU)"
                                            : std::string())
@@ -658,7 +663,9 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     std::uintmax_t bytes = 0;
     const double readMs = readMilliseconds(files, bytes);
     start = std::chrono::steady_clock::now();
-    for (const std::string& w : sharedTextureCache().load(texturesOf(scene))) std::cerr << "mipgloss: warning: " << w << '\n';
+    const auto textures = std::make_shared<TextureCache>();  // this command's
+    renderer.setTextures(textures);
+    for (const std::string& w : textures->load(texturesOf(scene), asset.images)) std::cerr << "mipgloss: warning: " << w << '\n';
     const double decodeMs = millisecondsSince(start);
     std::size_t triangles = 0, vertices = 0;
     for (const SceneObject& o : scene.objects) triangles += o.mesh->triangleCount(), vertices += o.mesh->vertexCount();
@@ -672,8 +679,8 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     const double onScreenMs = loadMs + decodeMs + firstMs;
     std::cout << "renderer: " << renderer.glDescription() << "\n"
               << path.string() << ": " << triangles << " triangles, " << vertices << " vertices, "
-              << scene.objects.size() << " parts, " << sharedTextureCache().images() << " textures ("
-              << sharedTextureCache().bytes() / 1000000 << " MB decoded)\n"
+              << scene.objects.size() << " parts, " << textures->images() << " textures ("
+              << textures->bytes() / 1000000 << " MB decoded)\n"
               << "read the files alone (" << files.size() << " files, " << bytes / 1000000 << " MB): " << readMs << " ms\n"
               << "load (parse, validate, normals, tangents): " << loadMs << " ms\n"
               << "decode textures (OpenImageIO, in parallel): " << decodeMs << " ms\n"

@@ -2,6 +2,7 @@
 // closing ask before dropping changes (Save, Discard, Cancel; once through a real QMessageBox),
 // recent files, autosave and its restore after a crash, and exported images written atomically.
 // Everything under QStandardPaths test mode, so the user's own folders are never touched.
+#include "mipgloss/assets/default_scene.h"
 #include "mipgloss/ui/autosave.h"
 #include "mipgloss/ui/main_window.h"
 #include "mipgloss/ui/recent_files.h"

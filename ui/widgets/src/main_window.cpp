@@ -1,8 +1,9 @@
 #include "mipgloss/ui/main_window.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/assets/default_scene.h"
 #include "mipgloss/scene/mesh.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/autosave.h"

@@ -2,7 +2,7 @@
 // reason a reader refuses them with, and binary values in either byte order.
 #pragma once
 
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "formats/mesh_formats.h"
 
 #include <gtest/gtest.h>
