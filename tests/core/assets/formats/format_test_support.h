@@ -1,4 +1,4 @@
-// What the mesh format readers' tests share (tests/core/scene/formats/): bytes as a span, the
+// What the mesh format readers' tests share (tests/core/assets/formats/): bytes as a span, the
 // reason a reader refuses them with, and binary values in either byte order.
 #pragma once
 
