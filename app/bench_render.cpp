@@ -8,14 +8,15 @@
 
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/scene/chain_needs.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
-#include "mipgloss/scene/mesh.h"
 #include "mipgloss/scene/placement.h"
 #include "mipgloss/scene/scene.h"
-#include "mipgloss/scene/textures.h"
 #include "mipgloss/ui/offscreen.h"
 
 #include <algorithm>
@@ -69,7 +70,9 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     std::uintmax_t bytes = 0;
     const double readMs = readMilliseconds(files, bytes);
     start = std::chrono::steady_clock::now();
-    printWarnings(sharedTextureCache().load(texturesOf(scene)));
+    const auto textures = std::make_shared<TextureCache>();  // this command's
+    renderer.setTextures(textures);
+    printWarnings(textures->load(texturesOf(scene), asset.images));
     const double decodeMs = millisecondsSince(start);
     std::size_t triangles = 0, vertices = 0;
     for (const SceneObject& o : scene.objects) triangles += o.mesh->triangleCount(), vertices += o.mesh->vertexCount();
@@ -83,8 +86,8 @@ int benchOneMesh(ui::OffscreenRenderer& renderer, const fs::path& path, int fram
     const double onScreenMs = loadMs + decodeMs + firstMs;
     std::cout << "renderer: " << renderer.glDescription() << "\n"
               << path.string() << ": " << triangles << " triangles, " << vertices << " vertices, "
-              << scene.objects.size() << " parts, " << sharedTextureCache().images() << " textures ("
-              << sharedTextureCache().bytes() / 1000000 << " MB decoded)\n"
+              << scene.objects.size() << " parts, " << textures->images() << " textures ("
+              << textures->bytes() / 1000000 << " MB decoded)\n"
               << "read the files alone (" << files.size() << " files, " << bytes / 1000000 << " MB): " << readMs << " ms\n"
               << "load (parse, validate, normals, tangents): " << loadMs << " ms\n"
               << "decode textures (OpenImageIO, in parallel): " << decodeMs << " ms\n"

@@ -6,7 +6,8 @@
 #include "offscreen_session.h"
 
 #include "mipgloss/ibl/phong.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/library.h"
 #include "mipgloss/ui/atomic_file.h"
@@ -250,9 +251,10 @@ int thumbnails(Args args, const char* argv0) {
         prepareEnvironment(settings, thumbnailNeeds(settings.faceSize)));
     printWarnings(environment->report.warnings);
     const std::vector<std::string> names = thumbnailFileNames(library);
+    const auto textures = std::make_shared<TextureCache>();  // this command's decoded maps
     for (std::size_t i = 0; i < library.entries.size(); ++i) {
         const LibraryMaterial& entry = library.entries[i];
-        const QImage image = ui::renderThumbnail(session.renderer(), entry.material, environment, size);
+        const QImage image = ui::renderThumbnail(session.renderer(), textures, entry.material, environment, size);
         const fs::path png = outDir / (names[i] + ".png");
         if (image.isNull()) throw std::runtime_error(png.string() + ": the render failed");
         ui::writeFileAtomically(png, [&](QIODevice& device) { return image.save(&device, "PNG"); });

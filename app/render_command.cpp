@@ -5,19 +5,20 @@
 #include "offscreen_session.h"
 #include "render_options.h"
 
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/ibl/builders.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/ibl/phong.h"
+#include "mipgloss/ibl/specular.h"
+#include "mipgloss/io/image_file.h"
 #include "mipgloss/scene/chain_needs.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
 #include "mipgloss/scene/lobes.h"
-#include "mipgloss/io/image_file.h"
-#include "mipgloss/scene/mesh.h"
 #include "mipgloss/scene/placement.h"
-#include "mipgloss/ibl/phong.h"
-#include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/scene.h"
-#include "mipgloss/scene/textures.h"
 #include "mipgloss/scene/turntable.h"
 #include "mipgloss/ui/atomic_file.h"
 #include "mipgloss/ui/library_file.h"
@@ -271,7 +272,7 @@ LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
 // The scene `options` ask for: a file, meshes, the environment alone, or the default (whose
 // picture is 1024x384 unless --size says), with the flags' changes made. Warnings on stderr.
 Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>& libraryMaterial, int& width,
-                    int& height) {
+                    int& height, EncodedImages& keptImages) {
     Scene scene;
     if (o.scene) {
         ui::SceneFileReport report;
@@ -291,6 +292,7 @@ Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>
             // An asset (glTF, OBJ with MTL) brings its parts and materials; a plain mesh is one part.
             const Asset asset = loadAsset(p);
             printWarnings(asset.warnings, o.quiet);
+            keptImages.insert(asset.images.begin(), asset.images.end());  // from the parse that read them
             addAsset(scene, asset, p.string(), nextInRow(assetBounds(asset), cursor), Material{});
         }
     }
@@ -369,7 +371,7 @@ struct PrepareTimes {
 // The status line: `counters` are those of the render that was plain (a comparison's left half).
 void reportRender(const std::string& what, const std::string& extra, int width, int height, const Scene& scene,
                   const PreparedEnvironment& environment, std::size_t lobes, const PrepareTimes& times,
-                  const ui::RenderCounters& c, const ui::OffscreenRenderer& renderer) {
+                  const TextureCache& textures, const ui::RenderCounters& c, const ui::OffscreenRenderer& renderer) {
     std::cerr << "mipgloss: " << what << ": " << width << "x" << height << ", " << scene.objects.size()
               << " objects (" << c.objectsDrawn << " drawn, " << c.objectsCulled
               << " culled), environment " << environment.settings.faceSize << "² "
@@ -379,7 +381,7 @@ void reportRender(const std::string& what, const std::string& extra, int width, 
               << " lobe stack entries made in " << times.lobes << " s (" << static_cast<double>(c.stackBytes) / 1e6
               << " MB on the GPU; " << c.objectsSettled
               << " objects settled), environment prepared in " << times.environment << " s"
-              << (c.textureUploads > 0 ? ", " + std::to_string(sharedTextureCache().images()) + " textures decoded in " +
+              << (c.textureUploads > 0 ? ", " + std::to_string(textures.images()) + " textures decoded in " +
                                              std::to_string(times.textures) + " s (" +
                                              std::to_string(c.textureBytes / 1000000) + " MB on the GPU)"
                                        : std::string())
@@ -404,14 +406,17 @@ int runRender(Args args, const char* argv0) {
     checkRenderSize(renderer, "--size", width, height, o.samples);
     checkWritableFolder(firstOut);
     if (o.aov) checkWritableFolder(*o.aov);
-    Scene scene = sceneToRender(o, libraryMaterialEntry, width, height);
+    EncodedImages keptImages;  // the assets' embedded images, kept from the parse that read them
+    Scene scene = sceneToRender(o, libraryMaterialEntry, width, height, keptImages);
     const bool linear = lowerExtension(firstOut) == ".exr";
 
     // The materials' texture maps, decoded on worker threads (textures.h); one that cannot be read
     // is a warning, and the maps reading it are drawn without it.
     PrepareTimes times;
     const auto texturesStart = std::chrono::steady_clock::now();
-    printWarnings(sharedTextureCache().load(texturesOf(scene)), o.quiet);
+    const auto textures = std::make_shared<TextureCache>();  // this command's
+    renderer.setTextures(textures);
+    printWarnings(textures->load(texturesOf(scene), keptImages), o.quiet);
     times.textures = secondsSince(texturesStart);
 
     const auto start = std::chrono::steady_clock::now();
@@ -440,8 +445,8 @@ int runRender(Args args, const char* argv0) {
     ui::RenderCounters plainCounters;
     auto report = [&](const std::string& extra) {
         if (!o.quiet)
-            reportRender(o.out->string(), extra, width, height, scene, *environment, lobes.size(), times, plainCounters,
-                         renderer);
+            reportRender(o.out->string(), extra, width, height, scene, *environment, lobes.size(), times, *textures,
+                         plainCounters, renderer);
     };
 
     std::ostringstream extra;

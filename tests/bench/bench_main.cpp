@@ -10,7 +10,7 @@
 // what it claims to time.
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/io/default_env.h"
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "mesh_files.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>

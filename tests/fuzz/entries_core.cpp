@@ -4,8 +4,8 @@
 #include "entries.h"
 
 #include "mipgloss/io/import.h"
-#include "mipgloss/scene/asset.h"
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/mesh_files.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

@@ -152,8 +152,7 @@ float SceneObject::worldRadius() const {
     return mesh ? mesh->bounds.radius() * std::abs(transform.scale) : 0.0f;
 }
 
-Scene makeFigure1Scene() {
-    auto teapot = std::make_shared<const Mesh>(defaultTeapot());
+Scene makeFigure1Scene(const std::shared_ptr<const Mesh>& teapot) {
     Scene scene;
     scene.environment.source = kBuiltinEnvironment;
     scene.environment.faceSize = 128;

@@ -3,7 +3,7 @@
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/io/import.h"
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "render_cli_support.h"
 #include "render_support.h"
 #include "test_support.h"

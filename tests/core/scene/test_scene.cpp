@@ -86,8 +86,12 @@ TEST(Frustum, CullsSpheresWhollyOutsideOnly) {
     EXPECT_TRUE(f.intersectsSphere(glm::vec3(-halfWidth - 0.5f, 0.0f, 0.0f), 1.0f));
 }
 
+// Figure 1 on a sphere: the scene model's layout, whatever mesh the caller reads (the default
+// scene's teapot is tests/core/assets').
+Scene figure1() { return makeFigure1Scene(std::make_shared<const Mesh>(makeSphere(8, 16))); }
+
 TEST(Figure1Scene, IsThePapersFigure) {
-    const Scene scene = makeFigure1Scene();
+    const Scene scene = figure1();
     ASSERT_EQ(scene.objects.size(), 4u);
     const float lambdas[] = {0.0f, 3.5f, 5.0f, 7.0f};
     for (std::size_t i = 0; i < 4; ++i) {
@@ -129,10 +133,10 @@ TEST(ChainNeeds, FollowTheDeepestLobeInUse) {
     EXPECT_EQ(levelFor(5.0f, base), 2) << "n = 47 lies between 128 and 32";
     EXPECT_EQ(levelFor(3.5f, base), 1);
     EXPECT_EQ(levelFor(2.0f, base), 1);
-    EXPECT_EQ(chainNeeds(makeFigure1Scene(), base), (ChainNeeds{4, false}));
-    EXPECT_EQ(chainNeeds(makeFigure1Scene(), 512), (ChainNeeds{6, false})) << "n = 2 between 8 and 1 at 512";
-    EXPECT_EQ(chainNeeds(makeFigure1Scene(), 16), (ChainNeeds{1, false})) << "16: one read level";
-    EXPECT_EQ(chainNeeds(makeFigure1Scene(), 0), chainNeeds(makeFigure1Scene(), 1)) << "a face size not yet known counts as 1";
+    EXPECT_EQ(chainNeeds(figure1(), base), (ChainNeeds{4, false}));
+    EXPECT_EQ(chainNeeds(figure1(), 512), (ChainNeeds{6, false})) << "n = 2 between 8 and 1 at 512";
+    EXPECT_EQ(chainNeeds(figure1(), 16), (ChainNeeds{1, false})) << "16: one read level";
+    EXPECT_EQ(chainNeeds(figure1(), 0), chainNeeds(figure1(), 1)) << "a face size not yet known counts as 1";
     Scene noBackground = sceneWith({Material{}});
     noBackground.display.showBackground = false;
     EXPECT_EQ(chainNeeds(noBackground, base), (ChainNeeds{0, false})) << "mirrors only";

@@ -3,7 +3,7 @@
 // folder of scene and asset moves together (issue 21: "scene files reference the asset by
 // relative path; the asset is not copied in").
 #include "gltf_writer.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 #include "mipgloss/ui/scene_file.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,7 @@
 // Scene files: round trips, relative paths, shared meshes, version 1 λ keeping its look, and every
 // user error naming the file.
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_file.h"

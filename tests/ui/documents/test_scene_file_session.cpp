@@ -2,6 +2,8 @@
 // flag and its signal, the title, recent files (order, limit, files gone), autosave (what it writes,
 // when it is removed) and restoring a leftover, all with real files in temporary folders, under
 // QStandardPaths test mode (tests/ui/main.cpp), so the user's own folders are never touched.
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "mipgloss/ui/recent_files.h"
 #include "mipgloss/ui/scene_document.h"
 #include "mipgloss/ui/scene_file.h"

@@ -4,6 +4,7 @@
 #include "render_support.h"
 #include "test_support.h"
 
+#include "mipgloss/assets/default_scene.h"
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"

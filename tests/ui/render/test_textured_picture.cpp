@@ -8,10 +8,10 @@
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/metrics.h"
 #include "mipgloss/ibl/specular.h"
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/lobes.h"
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/textures.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -74,14 +74,20 @@ fs::path writeSphere(const std::string& name, const std::function<tinygltf::Mate
 }
 
 // The asset as `render --mesh` places it (at the origin: addAsset with an identity transform),
-// its textures decoded.
-Scene sceneOf(const fs::path& file) {
-    const Asset asset = loadAsset(file);
+// its textures decoded into a cache of its own, as a command's.
+struct TexturedScene {
     Scene scene;
-    addAsset(scene, asset, file.string(), Transform{}, Material{});
-    scene.display.showBackground = false;
-    for (const std::string& w : sharedTextureCache().load(texturesOf(scene))) std::printf("[ textured ] %s\n", w.c_str());
-    return scene;
+    std::shared_ptr<TextureCache> textures = std::make_shared<TextureCache>();
+};
+
+TexturedScene sceneOf(const fs::path& file) {
+    const Asset asset = loadAsset(file);
+    TexturedScene out;
+    addAsset(out.scene, asset, file.string(), Transform{}, Material{});
+    out.scene.display.showBackground = false;
+    for (const std::string& w : out.textures->load(texturesOf(out.scene), asset.images))
+        std::printf("[ textured ] %s\n", w.c_str());
+    return out;
 }
 
 struct View {
@@ -89,12 +95,14 @@ struct View {
     glm::mat4 inverse;
 };
 
-View render(const Scene& scene, const std::shared_ptr<const PreparedEnvironment>& env = forest(64)) {
+View render(const TexturedScene& textured, const std::shared_ptr<const PreparedEnvironment>& env = forest(64)) {
+    const Scene& scene = textured.scene;
     std::string error;
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     EXPECT_NE(renderer, nullptr) << error;
     View v;
     if (!renderer) return v;
+    renderer->setTextures(textured.textures);
     v.r = test::renderSettled(*renderer, scene, env, kSize);
     OrbitCamera camera;  // renderSettled's
     camera.yawDegrees = 30.0f;
@@ -175,9 +183,9 @@ TEST(TexturedPicture, BaseColourTexelsAppearAtTheirUvsAndAMissingTextureIsDrawnW
         const int base = w.addTexture(w.addImage({}, "no_such_checker.png"));
         return test::pbrMaterial("Checker", {1, 1, 1, 1}, 0.0, 0.5, base);
     });
-    const Scene untexturedScene = sceneOf(missing);
-    EXPECT_FALSE(sharedTextureCache().problem(untexturedScene.materials.at(0).material.layers.maps.baseColor).empty());
-    const View u = render(untexturedScene);
+    const TexturedScene untextured = sceneOf(missing);
+    EXPECT_FALSE(untextured.textures->problem(untextured.scene.materials.at(0).material.layers.maps.baseColor).empty());
+    const View u = render(untextured);
     glm::dvec3 whiteSum(0.0);
     double differs = 0.0;
     int n = 0;
@@ -217,7 +225,7 @@ TEST_P(RoughnessMap, AovExponentsFollowTheMapAndThePictureTheExactLobes) {
         const int mr = w.addTexture(w.addImage(test::encodePng(ramp)));
         return test::pbrMaterial("Ramp", {0.5f, 0.5f, 0.5f, 1}, 1.0, 1.0, -1, mr);
     });
-    const Scene scene = sceneOf(file);
+    const TexturedScene scene = sceneOf(file);
     const View v = render(scene, env);
     int count = 0, exact = 0;
     double worst = 0.0, sum = 0.0;

@@ -93,8 +93,8 @@ TEST(Thumbnail, IsNotFlatAndAMirrorDiffersFromADiffuseMaterial) {
     ui::OffscreenRenderer* renderer = test::sharedRenderer(&error);
     ASSERT_NE(renderer, nullptr) << error;
     const int size = 96;
-    const QImage shiny = ui::renderThumbnail(*renderer, mirror(), thumbnailCourtyard(), size);
-    const QImage matte = ui::renderThumbnail(*renderer, diffuse(), thumbnailCourtyard(), size);
+    const QImage shiny = ui::renderThumbnail(*renderer, nullptr, mirror(), thumbnailCourtyard(), size);
+    const QImage matte = ui::renderThumbnail(*renderer, nullptr, diffuse(), thumbnailCourtyard(), size);
     ASSERT_EQ(shiny.size(), QSize(size, size));
     ASSERT_EQ(matte.size(), QSize(size, size));
     shiny.save(QString::fromStdString((test::outputDir() / "thumbnail_mirror.png").string()));

@@ -5,6 +5,7 @@
 // holds, recent files' order and limit) are tested without a window in
 // tests/ui/documents/test_scene_file_session.cpp. Everything under QStandardPaths test mode, so the
 // user's own folders are never touched.
+#include "mipgloss/assets/default_scene.h"
 #include "mipgloss/ui/autosave.h"
 #include "mipgloss/ui/main_window.h"
 #include "mipgloss/ui/recent_files.h"

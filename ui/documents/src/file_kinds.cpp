@@ -1,6 +1,6 @@
 #include "mipgloss/ui/file_kinds.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include <QFileInfo>
 

@@ -1,6 +1,6 @@
 #include "mipgloss/ui/library_document.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ui/library_file.h"

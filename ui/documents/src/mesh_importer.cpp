@@ -1,8 +1,8 @@
 #include "mipgloss/ui/mesh_importer.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/scene/mesh.h"
-#include "mipgloss/scene/textures.h"
 #include "mipgloss/scene/placement.h"
 #include "mipgloss/ui/scene_document.h"
 
@@ -29,9 +29,10 @@ struct MeshImporter::Loaded {
 
 namespace {
 
-// Reads the file and decodes the textures its materials read (textures.h), here: on the worker
-// thread for a large import, so the window only uploads them.
-MeshImporter::Loaded loadOne(const QString& path) {
+// Reads the file and decodes the textures its materials read into `textures` (the document's,
+// textures.h) from the images the read kept (Asset::images), here: on the worker thread for a
+// large import, so the window only uploads them.
+MeshImporter::Loaded loadOne(const QString& path, TextureCache& textures) {
     MeshImporter::Loaded result;
     result.path = path;
     try {
@@ -40,10 +41,10 @@ MeshImporter::Loaded loadOne(const QString& path) {
         for (AssetPart& part : asset.parts)
             if (part.name.empty()) part.name = QFileInfo(path).completeBaseName().toStdString();
         result.warnings = std::move(asset.warnings);
-        std::vector<TextureRef> textures;
+        std::vector<TextureRef> maps;
         for (const AssetMaterial& m : asset.materials)
-            for (const TextureRef& t : m.material.layers.maps.textures()) textures.push_back(t);
-        for (std::string& w : sharedTextureCache().load(textures)) result.warnings.push_back(std::move(w));
+            for (const TextureRef& t : m.material.layers.maps.textures()) maps.push_back(t);
+        for (std::string& w : textures.load(maps, asset.images)) result.warnings.push_back(std::move(w));
         result.asset = std::make_shared<const Asset>(std::move(asset));
     } catch (const FileError& e) {
         result.error = QString::fromStdString(e.what());
@@ -77,20 +78,20 @@ void MeshImporter::import(const QStringList& paths, Placement placement) {
     for (const QString& path : paths) bytes += QFileInfo(path).size();
     if (bytes <= kBackgroundImportBytes) {
         std::vector<Loaded> results;
-        for (const QString& path : paths) results.push_back(loadOne(path));
+        for (const QString& path : paths) results.push_back(loadOne(path, *document_->textures()));
         finish(results, placement);
         return;
     }
     emit backgroundStarted(static_cast<int>(paths.size()));
     worker_->start(
-        [paths](Job& job) {
+        [paths, textures = document_->textures()](Job& job) {
             // Files are read whole (the readers report no progress of their own): progress counts
             // files, and a cancellation stops before the next one.
             std::vector<Loaded> results;
             for (qsizetype i = 0; i < paths.size(); ++i) {
                 const std::string stage = tr("importing %1").arg(QFileInfo(paths[i]).fileName()).toStdString();
                 if (!job.progress(stage, static_cast<float>(i) / static_cast<float>(paths.size()))) throw Cancelled{};
-                results.push_back(loadOne(paths[i]));
+                results.push_back(loadOne(paths[i], *textures));
             }
             return results;
         },

@@ -1,7 +1,9 @@
 #include "mipgloss/ui/scene_document.h"
 
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/placement.h"
+#include "mipgloss/ui/background_worker.h"
 #include "scene_commands.h"
 
 #include <QUndoStack>
@@ -64,7 +66,50 @@ SceneDocument::MergeKey SceneDocument::newMergeKey() {
     return ++last;
 }
 
-SceneDocument::SceneDocument(QObject* parent) : QObject(parent), undoStack_(new QUndoStack(this)) {}
+SceneDocument::SceneDocument(QObject* parent)
+    : QObject(parent),
+      undoStack_(new QUndoStack(this)),
+      textures_(std::make_shared<TextureCache>()),
+      textureWorker_(new BackgroundWorker(this)) {}
+
+// ---------------------------------------------------------------------------------------------
+// Texture maps: decoded into the document's cache, on its worker or at once.
+
+std::vector<TextureRef> SceneDocument::texturesToDecode(const Scene& scene) const {
+    std::vector<TextureRef> missing;
+    for (const TextureRef& t : texturesOf(scene))
+        if (!textures_->find(t) && textures_->problem(t).empty() && !texturesDecoding_.count(t.key()))
+            missing.push_back(t);
+    return missing;
+}
+
+namespace {
+
+QStringList decodeInto(TextureCache& cache, const std::vector<TextureRef>& refs) {
+    QStringList warnings;
+    for (const std::string& w : cache.load(refs)) warnings << QString::fromStdString(w);
+    return warnings;
+}
+
+}  // namespace
+
+QStringList SceneDocument::decodeTexturesNow(const Scene& scene) {
+    const std::vector<TextureRef> missing = texturesToDecode(scene);
+    return missing.empty() ? QStringList() : decodeInto(*textures_, missing);
+}
+
+void SceneDocument::decodeTexturesLater(const Scene& scene) {
+    const std::vector<TextureRef> missing = texturesToDecode(scene);
+    if (missing.empty()) return;
+    for (const TextureRef& t : missing) texturesDecoding_.insert(t.key());
+    textureWorker_->start([textures = textures_, missing](Job&) { return decodeInto(*textures, missing); },
+                          [this, missing](JobOutcome<QStringList>&& outcome, const Job&) {
+                              for (const TextureRef& t : missing) texturesDecoding_.erase(t.key());
+                              QStringList warnings = outcome.value.value_or(QStringList());
+                              if (!outcome.error.isEmpty()) warnings << outcome.error;
+                              emit texturesDecoded(warnings);
+                          });
+}
 
 // ---------------------------------------------------------------------------------------------
 // Edits: each pushes one command, or nothing when it would change nothing.

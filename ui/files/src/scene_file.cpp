@@ -1,6 +1,8 @@
 #include "mipgloss/ui/scene_file.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/default_scene.h"
+#include "mipgloss/assets/mesh_files.h"
 
 #include "mipgloss/ui/atomic_file.h"
 

@@ -60,6 +60,10 @@ QImage OffscreenRenderer::render(const Scene& scene, const OrbitCamera& camera,
 
 void OffscreenRenderer::setHighlightedObject(int index) { impl_->renderer.setHighlightedObject(index); }
 
+void OffscreenRenderer::setTextures(std::shared_ptr<const TextureCache> textures) {
+    impl_->renderer.setTextures(std::move(textures));
+}
+
 void OffscreenRenderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes) {
     if (!impl_->ready || !impl_->context.makeCurrent(&impl_->surface)) return;
     impl_->renderer.setLobes(lobes);

@@ -6,7 +6,7 @@
 #include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/lookup_plan.h"
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/textures.h"
 
 #include <QFile>
 #include <QOpenGLContext>
@@ -51,6 +51,7 @@ int levelKey(float level) { return static_cast<int>(std::lround(level * 1024.0f)
 
 struct Renderer::Impl {
     QOpenGLFunctions_4_1_Core* gl = nullptr;
+    std::shared_ptr<const TextureCache> textureCache;  // the caller's (setTextures); null: maps drawn as missing
     std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram, outlineProgram;
     // object.frag and aov.frag built with MATERIAL_MAPS: the layered materials with texture maps
     // (MaterialMaps::inUse), drawn after the others (material_maps.glsl says why apart).
@@ -222,7 +223,7 @@ struct Renderer::Impl {
     GLuint mapTexture(const TextureRef& ref, bool srgb) {
         if (ref.empty()) return 0;
         const auto key = std::make_pair(ref.key(), srgb);  // the image, whatever channel a map reads
-        const std::shared_ptr<const TextureImage> decoded = sharedTextureCache().find(ref);
+        const std::shared_ptr<const TextureImage> decoded = textureCache ? textureCache->find(ref) : nullptr;
         auto it = mapTextures.find(key);
         if (it != mapTextures.end() && it->second.image == decoded) return it->second.texture;
         if (it != mapTextures.end()) {
@@ -983,6 +984,8 @@ void Renderer::clearOutputRect() { impl_->outputRect.reset(); }
 void Renderer::setTransparentBackground(bool transparent) { impl_->transparentBackground = transparent; }
 
 void Renderer::setHighlightedObject(int index) { impl_->highlighted = index; }
+
+void Renderer::setTextures(std::shared_ptr<const TextureCache> textures) { impl_->textureCache = std::move(textures); }
 
 void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes) {
     Impl& d = *impl_;

@@ -1,5 +1,6 @@
 #include "mipgloss/ui/main_window.h"
 
+#include "mipgloss/assets/default_scene.h"
 #include "mipgloss/ui/environment_manager.h"
 #include "mipgloss/ui/environment_panel.h"
 #include "mipgloss/ui/file_kinds.h"

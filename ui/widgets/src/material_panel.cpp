@@ -1,6 +1,6 @@
 #include "mipgloss/ui/material_panel.h"
 
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/textures.h"
 
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/phong.h"
@@ -622,7 +622,7 @@ void MaterialPanel::refreshLayers(const Material& m) {
     QStringList mapped, files;
     for (const auto& [what, ref] : textures)
         if (!ref->empty()) {
-            const std::string problem = sharedTextureCache().problem(*ref);
+            const std::string problem = document_->textures()->problem(*ref);
             mapped << (problem.empty() ? what : tr("%1 (missing)").arg(what));
             files << QStringLiteral("%1: %2%3").arg(what, QString::fromStdString(ref->key()),
                                                      problem.empty() ? QString() : QStringLiteral(" — ") + QString::fromStdString(problem));

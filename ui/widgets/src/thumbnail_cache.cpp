@@ -188,7 +188,7 @@ void ThumbnailCache::drawNext() {
         }
         const qreal ratio = qGuiApp ? qGuiApp->devicePixelRatio() : 1.0;
         const int pixels = static_cast<int>(std::lround(kThumbnailSize * ratio));
-        QPixmap pixmap = QPixmap::fromImage(renderThumbnail(*renderer_, material, environment_, pixels));
+        QPixmap pixmap = QPixmap::fromImage(renderThumbnail(*renderer_, textures_, material, environment_, pixels));
         pixmap.setDevicePixelRatio(ratio);
         pictures_[keyOf(material)] = {pixmap, environmentVersion_};
         ++counters_.renders;

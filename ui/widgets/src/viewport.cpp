@@ -1,7 +1,5 @@
 #include "mipgloss/ui/viewport.h"
 
-#include "mipgloss/scene/textures.h"
-
 #include "mipgloss/scene/picking.h"
 #include "mipgloss/scene/view_gestures.h"
 #include "mipgloss/ui/environment_manager.h"
@@ -14,10 +12,7 @@
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
-#include <QCoreApplication>
 #include <QPainter>
-#include <QPointer>
-#include <QThreadPool>
 #include <QTimer>
 #include <QWheelEvent>
 
@@ -54,6 +49,11 @@ Viewport::Viewport(SceneDocument* document, EnvironmentManager* environments, QW
     connect(document_, &SceneDocument::changed, this, &Viewport::syncComparison);
     connect(document_, &SceneDocument::selectionChanged, this, &Viewport::syncComparison);
     connect(document_, &SceneDocument::selectionChanged, this, qOverload<>(&QWidget::update));  // the outline
+    // Maps decoded on the document's worker: drawn from the next frame, the unreadable ones named.
+    connect(document_, &SceneDocument::texturesDecoded, this, [this](const QStringList& warnings) {
+        if (!warnings.isEmpty()) emit textureWarnings(warnings);
+        update();
+    });
     turntableTimer_ = new QTimer(this);
     turntableTimer_->setInterval(kTurntableIntervalMs);
     connect(turntableTimer_, &QTimer::timeout, this, &Viewport::advanceTurntable);
@@ -115,34 +115,15 @@ bool Viewport::comparing() const {
 
 int Viewport::dividerX() const { return static_cast<int>(std::lround(divider_ * static_cast<float>(width()))); }
 
+bool Viewport::decodingTextures() const { return document_->decodingTextures(); }
+
 void Viewport::decodeTextures(const Scene& scene, bool now) {
-    TextureCache& cache = sharedTextureCache();
-    std::vector<TextureRef> missing;
-    for (const TextureRef& t : texturesOf(scene))
-        if (!cache.find(t) && cache.problem(t).empty() && !texturesDecoding_.count(t.key())) missing.push_back(t);
-    if (missing.empty()) return;
-    // The cache's warnings, for textureWarnings.
-    auto decode = [](const std::vector<TextureRef>& refs) {
-        QStringList list;
-        for (const std::string& w : sharedTextureCache().load(refs)) list << QString::fromStdString(w);
-        return list;
-    };
-    if (now) {
-        const QStringList list = decode(missing);
-        if (!list.isEmpty()) emit textureWarnings(list);
+    if (!now) {
+        document_->decodeTexturesLater(scene);  // texturesDecoded redraws
         return;
     }
-    for (const TextureRef& t : missing) texturesDecoding_.insert(t.key());
-    QPointer<Viewport> self(this);
-    QThreadPool::globalInstance()->start([self, missing, decode] {
-        const QStringList list = decode(missing);
-        QMetaObject::invokeMethod(qApp, [self, missing, list] {
-            if (!self) return;
-            for (const TextureRef& t : missing) self->texturesDecoding_.erase(t.key());
-            if (!list.isEmpty()) emit self->textureWarnings(list);
-            self->update();
-        }, Qt::QueuedConnection);
-    });
+    const QStringList warnings = document_->decodeTexturesNow(scene);
+    if (!warnings.isEmpty()) emit textureWarnings(warnings);
 }
 
 void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool transparent, bool outline) {
@@ -157,6 +138,7 @@ void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool trans
     renderer_->setLobes(environments_->lobes());
     renderer_->setTransparentBackground(transparent);
     renderer_->setHighlightedObject(highlighted);
+    renderer_->setTextures(document_->textures());
     renderer_->render(shown, camera, w, h, fbo);
     if (!comparing() || !compareEnvironments_->current()) return;
     if (!compareRenderer_) {
@@ -171,6 +153,7 @@ void Viewport::drawInto(unsigned fbo, int w, int h, bool interactive, bool trans
     compareRenderer_->setLobes(compareEnvironments_->lobes());
     compareRenderer_->setTransparentBackground(transparent);
     compareRenderer_->setHighlightedObject(highlighted);
+    compareRenderer_->setTextures(document_->textures());
     const int split = static_cast<int>(std::lround(divider_ * static_cast<float>(w)));
     compareRenderer_->setOutputRect(split, 0, w - split, h);
     compareRenderer_->render(comparedScene(shown), camera, w, h, fbo);

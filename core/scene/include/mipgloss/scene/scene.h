@@ -241,7 +241,9 @@ struct Scene {
 
 // The paper's Figure 1: four teapots in a row, λ = 0 (mirror), 3.5 and 5.0 looked up by the
 // reflection vector and λ = 7.0 by the normal, under a 128² cube from the embedded environment.
-Scene makeFigure1Scene();
+// The mesh is the caller's: the default scene's is the embedded teapot (mipgloss/assets/
+// default_scene.h, makeFigure1Scene() reads it), which the scene model never parses itself.
+Scene makeFigure1Scene(const std::shared_ptr<const Mesh>& teapot);
 
 // World bounds of the visible objects (empty scene: a unit box at the origin).
 Bounds sceneBounds(const Scene& scene);

@@ -37,14 +37,25 @@
 
 #include <QObject>
 #include <QString>
+#include <QStringList>
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <set>
+#include <string>
+#include <vector>
 
 class QUndoStack;
 
+namespace mipgloss {
+class TextureCache;  // mipgloss/assets/textures.h
+}
+
 namespace mipgloss::ui {
+
+class BackgroundWorker;
 
 class SceneDocument : public QObject {
     Q_OBJECT
@@ -111,6 +122,17 @@ public:
     int selected() const { return selected_; }
     void setSelected(int index);  // -1 clears
 
+    // The decoded images this document's texture maps read (textures.h): its own cache, which its
+    // views draw from (Renderer::setTextures) and its imports fill; no other document's.
+    const std::shared_ptr<TextureCache>& textures() const { return textures_; }
+    // The maps `scene` reads that the cache lacks (not decoded, not refused, not on the way),
+    // decoded on the document's BackgroundWorker; texturesDecoded follows when they arrive.
+    void decodeTexturesLater(const Scene& scene);
+    // The same decoded here and now (a picture written to a file waits for its maps); returns the
+    // cache's warnings, each naming a map that could not be read.
+    QStringList decodeTexturesNow(const Scene& scene);
+    bool decodingTextures() const { return !texturesDecoding_.empty(); }
+
 signals:
     void objectAboutToBeInserted(int index);
     void objectInserted(int index);
@@ -128,6 +150,9 @@ signals:
     void displayChanged();
     void selectionChanged(int index);
     void changed();                        // once per edit, undo or redo, and on reset
+    // Maps decodeTexturesLater asked for have arrived (views redraw); `warnings` names each one
+    // that could not be read.
+    void texturesDecoded(const QStringList& warnings);
 
 private:
     // The undo commands' one door to the steps below (scene_commands.h), as LibraryEdits is the
@@ -152,9 +177,15 @@ private:
 
     void pushInsert(int index, SceneObject object, std::optional<NamedMaterial> added, const QString& text);
 
+    // The maps of `scene` missing from the cache and not on the worker.
+    std::vector<TextureRef> texturesToDecode(const Scene& scene) const;
+
     QUndoStack* undoStack_ = nullptr;
     Scene scene_;
     int selected_ = -1;
+    std::shared_ptr<TextureCache> textures_;
+    BackgroundWorker* textureWorker_ = nullptr;
+    std::set<std::string> texturesDecoding_;  // TextureRef keys on the worker now
 };
 
 }  // namespace mipgloss::ui

@@ -29,6 +29,8 @@ public:
     void setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes);
     // The object later renders outline (Renderer::setHighlightedObject); -1 by default.
     void setHighlightedObject(int index);
+    // The decoded images later renders' texture maps read (Renderer::setTextures); null by default.
+    void setTextures(std::shared_ptr<const TextureCache> textures);
 
     // The per-pixel account of the same view (Renderer::renderAov).
     AovImage renderAov(const Scene& scene, const OrbitCamera& camera,

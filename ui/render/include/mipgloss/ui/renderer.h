@@ -28,6 +28,10 @@
 #include <string>
 #include <vector>
 
+namespace mipgloss {
+class TextureCache;  // mipgloss/assets/textures.h
+}
+
 namespace mipgloss::ui {
 
 struct RenderCounters {
@@ -130,6 +134,11 @@ public:
     // found even behind another. The window's view sets it; pictures written to files never do.
     void setHighlightedObject(int index);
     static constexpr float kOutlineWidthPixels = 2.0f;
+
+    // The decoded images the scene's texture maps read: the caller's (one per document or command),
+    // shared because a worker may be filling it while frames are drawn. Null: every map is drawn as
+    // missing (the material without it).
+    void setTextures(std::shared_ptr<const TextureCache> textures);
 
     // The same view's per-pixel directions, exponents and exactness (no multisampling; pixels
     // next to the background or to another lobe are never exact).

@@ -10,13 +10,20 @@
 
 #include <memory>
 
+namespace mipgloss {
+class TextureCache;  // mipgloss/assets/textures.h
+}
+
 namespace mipgloss::ui {
 
 class OffscreenRenderer;
 
 // Renders `material`'s thumbnail (thumbnailScene and thumbnailCamera, mipgloss/scene/
-// thumbnail_scene.h), `size` × `size` pixels, under `environment`.
-QImage renderThumbnail(OffscreenRenderer& renderer, const Material& material,
-                       const std::shared_ptr<const PreparedEnvironment>& environment, int size);
+// thumbnail_scene.h), `size` × `size` pixels, under `environment`. Its texture maps are decoded
+// into `textures` (the caller's: one per thumbnail cache or command; null draws them missing),
+// which the renderer then reads.
+QImage renderThumbnail(OffscreenRenderer& renderer, const std::shared_ptr<TextureCache>& textures,
+                       const Material& material, const std::shared_ptr<const PreparedEnvironment>& environment,
+                       int size);
 
 }  // namespace mipgloss::ui

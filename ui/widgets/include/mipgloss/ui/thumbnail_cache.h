@@ -16,6 +16,7 @@
 // (the others keep their old picture until they are scrolled to).
 #pragma once
 
+#include "mipgloss/assets/textures.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/scene.h"
 #include "mipgloss/ui/background_worker.h"
@@ -100,6 +101,8 @@ private:
     EnvironmentManager* environments_;
     std::function<std::vector<int>()> visibleRows_;
     std::unique_ptr<OffscreenRenderer> renderer_;
+    // The thumbnails' own decoded maps (textures.h: a cache is its user's, never the process's).
+    std::shared_ptr<TextureCache> textures_ = std::make_shared<TextureCache>();
     bool rendererTried_ = false;
     QString error_;
 

@@ -29,7 +29,6 @@
 #include <QString>
 
 #include <memory>
-#include <set>
 #include <string>
 #include <optional>
 
@@ -64,9 +63,9 @@ public:
 
     // The turntable: running, what turns, its speed (degrees per second) and its angle now.
     bool turntableRunning() const;
-    // Texture maps the scene's materials read that are being decoded now (on a worker thread:
-    // a scene opened, a library material applied); the view redraws when they arrive.
-    bool decodingTextures() const { return !texturesDecoding_.empty(); }
+    // Texture maps the scene's materials read that are being decoded now (on the document's
+    // worker: a scene opened, a library material applied); the view redraws when they arrive.
+    bool decodingTextures() const;
     TurntableSpin turntableSpin() const { return turntableSpin_; }
     float turntableSpeed() const { return turntableSpeed_; }
     float turntableDegrees() const { return turntableDegrees_; }
@@ -153,10 +152,9 @@ private:
     SceneDocument* document_;
     EnvironmentManager* environments_;
     std::unique_ptr<Renderer> renderer_;
-    // Decodes the maps `scene` reads that the texture cache lacks: at once when `now` (a picture
-    // exported), else on a worker, with a redraw when they are there.
+    // Decodes the maps `scene` reads that the document's texture cache lacks: at once when `now`
+    // (a picture exported), else on the document's worker, with a redraw when they are there.
     void decodeTextures(const Scene& scene, bool now);
-    std::set<std::string> texturesDecoding_;  // TextureRef keys on a worker now
     OrbitCamera camera_;
     bool framedOnce_ = false;
     bool showCounters_ = false;

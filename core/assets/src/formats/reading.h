@@ -1,9 +1,9 @@
-// What the mesh file readers share (internal to mipgloss_scene, core/scene/src/formats/): text
+// What the mesh file readers share (internal to mipgloss_assets, core/assets/src/formats/): text
 // lines and words with their line numbers, numbers as the text formats write them, little- and
 // big-endian binary values, and the wording of counts and places in messages.
 #pragma once
 
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include "formats/asset_files.h"
 #include "formats/mesh_formats.h"

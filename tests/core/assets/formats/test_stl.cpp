@@ -1,4 +1,4 @@
-// The STL reader (core/scene/src/formats/stl.cpp): text and binary told apart by the size, and
+// The STL reader (core/assets/src/formats/stl.cpp): text and binary told apart by the size, and
 // corners at one position welded into one vertex.
 #include "format_test_support.h"
 #include "test_support.h"

@@ -1,4 +1,4 @@
-// The mesh file readers (internal to mipgloss_scene): pure functions over the bytes, one per
+// The mesh file readers (internal to mipgloss_assets): pure functions over the bytes, one per
 // format and each in its own file here (obj.cpp, stl.cpp, ply.cpp, off.cpp, om.cpp; what they
 // share in reading.h), each returning the file's polygons or throwing MeshError with the file name and the line
 // or byte offset. The loader (mesh.cpp) turns polygons into a Mesh; nothing else reads the files.
@@ -25,7 +25,7 @@
 // with the bytes that must hold it, so no file costs more memory than a small multiple of its size.
 #pragma once
 
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 
 #include <array>
 #include <cstddef>

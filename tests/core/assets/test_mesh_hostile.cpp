@@ -1,7 +1,7 @@
 // Hostile mesh files (issue 11): what scripts/fuzz-meshes.sh found crashing or hanging OpenMesh's
 // readers, kept under tests/assets/meshes/hostile/, each refused naming the file and where; and
 // what the readers share (formats/reading.h). Each format's own tests are in formats/.
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "formats/mesh_formats.h"
 #include "test_support.h"
 

@@ -1,11 +1,11 @@
-// glTF assets (core/scene/src/formats/gltf.cpp, asset.h) on files the tests write themselves with
+// glTF assets (core/assets/src/formats/gltf.cpp, asset.h) on files the tests write themselves with
 // tinygltf's writer (tests/tools/gltf_writer.h): positions, normals and tangents baked through the
 // node hierarchy, UVs as glTF has them, the metallic–roughness materials and their texture maps
 // (embedded and external images, decoded by a TextureCache), the primitive modes, and hostile
 // files, each refused with an AssetError that names the file and the element at fault.
 #include "gltf_writer.h"
-#include "mipgloss/scene/asset.h"
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/assets/textures.h"
 
 #include <gtest/gtest.h>
 
@@ -474,12 +474,12 @@ TEST(GltfTextures, EmbeddedImageBytesAndMimeTypeComeBackAndDecode) {
     const fs::path file = dir.path() / "board.glb";
     w.writeGlb(file);
 
-    const EncodedImage encoded = gltfImageBytes(file, image);
-    EXPECT_EQ(encoded.mimeType, "image/png");
-    EXPECT_EQ(encoded.bytes, board);
-    EXPECT_EQ(gltfImageBytes(file, 0).bytes, red);
-    EXPECT_THROW(gltfImageBytes(file, 2), AssetError);
-    EXPECT_THROW(gltfImageBytes(dir.path() / "none.glb", 0), AssetError);
+    const std::vector<EncodedImage> images = gltfImages(file);
+    ASSERT_EQ(images.size(), 2u);
+    EXPECT_EQ(images[static_cast<std::size_t>(image)].mimeType, "image/png");
+    EXPECT_EQ(images[static_cast<std::size_t>(image)].bytes, board);
+    EXPECT_EQ(images[0].bytes, red);
+    EXPECT_THROW(gltfImages(dir.path() / "none.glb"), AssetError);
 
     const Asset asset = loadAsset(file);
     ASSERT_EQ(asset.materials.size(), 1u);

@@ -1,9 +1,9 @@
-// What the asset readers share (internal to mipgloss_scene; asset.h is the interface): reading a
+// What the asset readers share (internal to mipgloss_assets; asset.h is the interface): reading a
 // file whole, refused with the asset's own error, and the glTF reader's file entry point for
 // loadAsset.
 #pragma once
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include <filesystem>
 #include <vector>

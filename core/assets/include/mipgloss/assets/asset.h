@@ -28,10 +28,11 @@
 #pragma once
 
 #include "mipgloss/scene/library.h"
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "mipgloss/scene/scene.h"
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -59,12 +60,25 @@ struct AssetPart {
     int material = -1;                 // index into Asset::materials, -1: none (the default material)
 };
 
+// An image as the file holds it (PNG, JPEG, ...) and its MIME type ("image/png"...), for decoding
+// (TextureCache).
+struct EncodedImage {
+    std::vector<unsigned char> bytes;
+    std::string mimeType;
+};
+// Encoded images by TextureRef::key() ("file#image 3").
+using EncodedImages = std::map<std::string, std::shared_ptr<const EncodedImage>>;
+
 struct Asset {
     std::vector<AssetPart> parts;
     std::vector<AssetMaterial> materials;
     std::vector<std::string> warnings;  // one line each, naming the file
     // Read by loadMesh (a plain mesh file): its one part is the whole file (SceneObject::meshPart -1).
     bool wholeFile = false;
+    // The glTF's embedded images the materials read, kept from the parse that read the asset, so
+    // decoding them (TextureCache::load) never parses the file again (gltfio's loader hands its
+    // resource loader the buffers the same way).
+    EncodedImages images;
 };
 
 // The box of all parts (the file's own placement of them).
@@ -107,12 +121,10 @@ struct NamedBytes {
 Asset loadObjAssetFromMemory(std::span<const unsigned char> bytes, const std::filesystem::path& file,
                              std::span<const NamedBytes> mtlFiles);
 
-// The encoded bytes of image `image` of a glTF file and its MIME type ("image/png"...), for
-// decoding (TextureCache). Throws AssetError when the file or the image cannot be read.
-struct EncodedImage {
-    std::vector<unsigned char> bytes;
-    std::string mimeType;
-};
-EncodedImage gltfImageBytes(const std::filesystem::path& file, int image);
+// Every image of a glTF file, encoded, in the file's order (an external image's bytes are read
+// too): one parse of the file, for a caller that has no Asset to take them from (a scene file
+// naming a glTF's image; TextureCache::load parses each such file once per call). Nothing is
+// cached here. Throws AssetError when the file cannot be read.
+std::vector<EncodedImage> gltfImages(const std::filesystem::path& file);
 
 }  // namespace mipgloss

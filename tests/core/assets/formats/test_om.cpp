@@ -1,4 +1,4 @@
-// The OM reader (core/scene/src/formats/om.cpp): against what OpenMesh itself writes and reads, and
+// The OM reader (core/assets/src/formats/om.cpp): against what OpenMesh itself writes and reads, and
 // on damaged files (OpenMesh's own OMReader freed twice or crashed on the fuzzer's).
 // OpenMesh's colour vectors (VectorT<unsigned char, 3>) are default-constructed uninitialised, so
 // GCC warns where these tests request colours, inside the standard library's headers.

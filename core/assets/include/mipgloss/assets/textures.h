@@ -1,7 +1,10 @@
 // The decoded images of material texture maps, one per image however many materials read it
 // (TextureRef::key), decoded with OpenImageIO (io/texture.h) on worker threads, never on the
-// caller's: the window's loader and `mipgloss render` call load(), the renderer only find()s
-// what is there and draws a material without the maps still missing.
+// caller's. As gltfio's ResourceLoader, a cache is its caller's, never the process's: one per
+// document (the window's scene document, filled by its BackgroundWorker) or per command
+// (`mipgloss render`, a thumbnail); that caller load()s, and the renderer it hands the cache to
+// (Renderer::setTextures) only find()s what is there, drawing a material without the maps still
+// missing.
 //
 // GPU memory budget (docs/assets.md): each image at most maxSize on a side (4096 by default,
 // halved until it fits), and all of them together at most budgetBytes (1 GiB of RGBA8 by default;
@@ -9,6 +12,7 @@
 // downsizing is a warning naming the image and both sizes.
 #pragma once
 
+#include "mipgloss/assets/asset.h"
 #include "mipgloss/io/texture.h"
 #include "mipgloss/scene/scene.h"
 
@@ -28,10 +32,12 @@ public:
     explicit TextureCache(int maxSize = kDefaultMaxTextureSize, std::size_t budgetBytes = kDefaultTextureBudgetBytes)
         : maxSize_(maxSize), budgetBytes_(budgetBytes) {}
 
-    // Decodes each image in `refs` not decoded (or refused) yet, in parallel. Returns the warnings
-    // (a missing or undecodable image: the maps reading it are drawn without it; downsizing),
-    // each naming the file, once per image.
-    std::vector<std::string> load(const std::vector<TextureRef>& refs);
+    // Decodes each image in `refs` not decoded (or refused) yet, in parallel. A glTF's embedded
+    // image comes from `kept` when it is there (Asset::images, from the parse that read the
+    // asset); otherwise its file is parsed once in this call for all its images (gltfImages).
+    // Returns the warnings (a missing or undecodable image: the maps reading it are drawn without
+    // it; downsizing), each naming the file, once per image.
+    std::vector<std::string> load(const std::vector<TextureRef>& refs, const EncodedImages& kept = {});
 
     // The image for `ref`, or null (not loaded, or refused).
     std::shared_ptr<const TextureImage> find(const TextureRef& ref) const;
@@ -49,13 +55,7 @@ private:
     std::map<std::string, std::string> problems_;
 };
 
-// The process's one cache: the window and the renderer share it.
-TextureCache& sharedTextureCache();
-
 // Every texture the scene's materials read (used or not by an object), each image once.
 std::vector<TextureRef> texturesOf(const Scene& scene);
-
-// Decodes one texture: a file, or image k of a glTF file (asset.h, gltfImageBytes).
-TextureImage decodeTextureRef(const TextureRef& ref, int maxSize);
 
 }  // namespace mipgloss

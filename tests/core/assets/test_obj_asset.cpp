@@ -1,7 +1,7 @@
-// OBJ assets with their MTL libraries (core/scene/src/formats/obj_asset.cpp, asset.h), on files
+// OBJ assets with their MTL libraries (core/assets/src/formats/obj_asset.cpp, asset.h), on files
 // written here: parts by material, UVs turned v-down, authored and computed normals, smoothing
 // groups, the MTL values as layered materials, and hostile files refused naming the line.
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The OFF reader (core/scene/src/formats/off.cpp) on hand-made files.
+// The OFF reader (core/assets/src/formats/off.cpp) on hand-made files.
 #include "format_test_support.h"
 #include "test_support.h"
 

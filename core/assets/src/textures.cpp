@@ -1,21 +1,65 @@
-#include "mipgloss/scene/textures.h"
+#include "mipgloss/assets/textures.h"
 
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <map>
 #include <set>
 
 namespace mipgloss {
 
-TextureImage decodeTextureRef(const TextureRef& ref, int maxSize) {
-    if (ref.image < 0) return decodeTexture(ref.file, maxSize);
-    const EncodedImage encoded = gltfImageBytes(ref.file, ref.image);
-    return decodeTextureFromMemory(encoded.bytes, ref.key(), encoded.mimeType, maxSize);
+namespace {
+
+// The encoded bytes of each embedded glTF image in `todo` (null for a plain image file, or where
+// `problems` says why there are none): the caller's kept ones, else each file's images from one
+// parse of it, the files parsed in parallel.
+std::vector<std::shared_ptr<const EncodedImage>> encodedImagesOf(const std::vector<TextureRef>& todo,
+                                                                 const EncodedImages& kept,
+                                                                 std::vector<std::string>& problems) {
+    std::vector<std::shared_ptr<const EncodedImage>> encoded(todo.size());
+    std::map<std::string, std::vector<std::size_t>> byFile;
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+        if (todo[i].image < 0) continue;
+        if (const auto it = kept.find(todo[i].key()); it != kept.end() && it->second)
+            encoded[i] = it->second;
+        else
+            byFile[todo[i].file].push_back(i);
+    }
+    const std::vector<std::pair<const std::string, std::vector<std::size_t>>*> files = [&] {
+        std::vector<std::pair<const std::string, std::vector<std::size_t>>*> out;
+        for (auto& entry : byFile) out.push_back(&entry);
+        return out;
+    }();
+    tbb::parallel_for(std::size_t(0), files.size(), [&](std::size_t f) {
+        const std::filesystem::path file = files[f]->first;
+        const std::vector<std::size_t>& refs = files[f]->second;
+        try {
+            std::vector<EncodedImage> images = gltfImages(file);
+            for (const std::size_t i : refs) {
+                const int image = todo[i].image;
+                if (static_cast<std::size_t>(image) >= images.size())
+                    problems[i] = AssetError(file, "image " + std::to_string(image) + " is not in the file (it has " +
+                                                       std::to_string(images.size()) + ")").what();
+                else if (images[static_cast<std::size_t>(image)].bytes.empty())
+                    problems[i] = AssetError(file, "image " + std::to_string(image) + " has no data").what();
+                else
+                    encoded[i] = std::make_shared<const EncodedImage>(images[static_cast<std::size_t>(image)]);
+            }
+        } catch (const FileError& e) {
+            for (const std::size_t i : refs) problems[i] = e.what();
+        } catch (const std::exception& e) {  // out of memory on a huge file, ...
+            for (const std::size_t i : refs) problems[i] = todo[i].key() + ": " + e.what();
+        }
+    });
+    return encoded;
 }
 
-std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs) {
+}  // namespace
+
+std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs, const EncodedImages& kept) {
     std::vector<TextureRef> todo;
     {
         std::lock_guard lock(mutex_);
@@ -33,9 +77,17 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs)
         std::string problem;
     };
     std::vector<Result> results(todo.size());
+    std::vector<std::string> unread(todo.size());
+    const std::vector<std::shared_ptr<const EncodedImage>> encoded = encodedImagesOf(todo, kept, unread);
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+        if (!unread[i].empty()) {
+            results[i].problem = unread[i];
+            return;
+        }
         try {
-            results[i].image = std::make_shared<TextureImage>(decodeTextureRef(todo[i], maxSize_));
+            results[i].image = std::make_shared<TextureImage>(
+                encoded[i] ? decodeTextureFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType, maxSize_)
+                           : decodeTexture(todo[i].file, maxSize_));
         } catch (const FileError& e) {
             results[i].problem = e.what();
         } catch (const std::exception& e) {  // out of memory on a huge image, ...
@@ -98,11 +150,6 @@ std::size_t TextureCache::bytes() const {
 std::size_t TextureCache::images() const {
     std::lock_guard lock(mutex_);
     return images_.size();
-}
-
-TextureCache& sharedTextureCache() {
-    static TextureCache cache;
-    return cache;
 }
 
 std::vector<TextureRef> texturesOf(const Scene& scene) {

@@ -1,7 +1,7 @@
 // The glTF 2.0 reader (asset.h): tinygltf parses the JSON and the GLB container; every index,
 // count, offset and stride it hands us is checked here before a byte is read, because tinygltf
 // checks only the JSON's shape (an accessor may point past its buffer, an index past its vertices).
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include "formats/asset_files.h"
 #include "formats/mesh_formats.h"
@@ -27,7 +27,6 @@
 #include <iterator>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <set>
 #include <string>
 
@@ -350,6 +349,9 @@ public:
         } else {
             ref.file = file_.string();
             ref.image = t.source;
+            // Kept for the decoder (Asset::images); one with no bytes is refused when decoded.
+            if (!image.image.empty() && !asset_.images.count(ref.key()))
+                asset_.images.emplace(ref.key(), std::make_shared<const EncodedImage>(EncodedImage{image.image, image.mimeType}));
         }
         return ref;
     }
@@ -717,31 +719,13 @@ Asset loadGltfFile(const fs::path& path) {
     return Reader(model, path).read();
 }
 
-EncodedImage gltfImageBytes(const fs::path& file, int image) {
-    // The last file's images stay for the next call: a material's maps are decoded one after
-    // another (or at once, on several threads), and each would otherwise parse the file again.
-    static std::mutex mutex;
-    static fs::path lastFile;
-    static fs::file_time_type lastTime;
-    static std::vector<EncodedImage> lastImages;
-    std::lock_guard lock(mutex);
-    std::error_code ec;
-    const fs::file_time_type time = fs::last_write_time(file, ec);
-    if (file != lastFile || time != lastTime) {
-        lastImages.clear();
-        lastFile.clear();
-        const std::vector<unsigned char> bytes = readAssetFile(file);
-        const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true});
-        for (const tinygltf::Image& i : model.images) lastImages.push_back(EncodedImage{i.image, i.mimeType});
-        lastFile = file;
-        lastTime = time;
-    }
-    if (image < 0 || static_cast<std::size_t>(image) >= lastImages.size())
-        throw AssetError(file, "image " + std::to_string(image) + " is not in the file (it has " +
-                                   std::to_string(lastImages.size()) + ")");
-    if (lastImages[static_cast<std::size_t>(image)].bytes.empty())
-        throw AssetError(file, "image " + std::to_string(image) + " has no data");
-    return lastImages[static_cast<std::size_t>(image)];
+std::vector<EncodedImage> gltfImages(const fs::path& file) {
+    const std::vector<unsigned char> bytes = readAssetFile(file);
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true});
+    std::vector<EncodedImage> images;
+    images.reserve(model.images.size());
+    for (const tinygltf::Image& i : model.images) images.push_back(EncodedImage{i.image, i.mimeType});
+    return images;
 }
 
 }  // namespace mipgloss

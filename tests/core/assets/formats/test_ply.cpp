@@ -1,4 +1,4 @@
-// The PLY reader (core/scene/src/formats/ply.cpp) on hand-made files, each expected message worked
+// The PLY reader (core/assets/src/formats/ply.cpp) on hand-made files, each expected message worked
 // out from the bytes.
 #include "format_test_support.h"
 #include "test_support.h"

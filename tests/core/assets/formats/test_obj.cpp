@@ -1,4 +1,4 @@
-// The OBJ reader (core/scene/src/formats/obj.cpp) on hand-made files.
+// The OBJ reader (core/assets/src/formats/obj.cpp) on hand-made files.
 #include "format_test_support.h"
 #include "test_support.h"
 

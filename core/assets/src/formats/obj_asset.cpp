@@ -2,7 +2,7 @@
 // and its MTL libraries read into layered materials with texture maps. A reader of its own, not
 // parseObj's (obj.cpp), because a part needs what parseObj skips: texture coordinates, normals,
 // materials and smoothing groups, and vertices split wherever those differ.
-#include "mipgloss/scene/asset.h"
+#include "mipgloss/assets/asset.h"
 
 #include "formats/mesh_formats.h"
 #include "formats/reading.h"

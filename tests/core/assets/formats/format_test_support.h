@@ -1,8 +1,8 @@
-// What the mesh format readers' tests share (tests/core/scene/formats/): bytes as a span, the
+// What the mesh format readers' tests share (tests/core/assets/formats/): bytes as a span, the
 // reason a reader refuses them with, and binary values in either byte order.
 #pragma once
 
-#include "mipgloss/scene/mesh.h"
+#include "mipgloss/assets/mesh_files.h"
 #include "formats/mesh_formats.h"
 
 #include <gtest/gtest.h>
