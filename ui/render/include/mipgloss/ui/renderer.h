@@ -20,6 +20,7 @@
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/scene.h"
+#include "mipgloss/scene/textures.h"
 
 #include <glm/vec4.hpp>
 
@@ -107,6 +108,10 @@ public:
     // again when the set changes). Entries made from another environment than the current one
     // are not read.
     void setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes);
+    // The decoded images the scene's texture maps read: the caller's (one per document or command),
+    // shared because a worker may be filling it while frames are drawn. Null: every map is drawn as
+    // missing (the material without it).
+    void setTextures(std::shared_ptr<const TextureCache> textures);
 
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.
     void render(const Scene& scene, const OrbitCamera& camera, int width, int height,
