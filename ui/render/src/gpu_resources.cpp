@@ -33,8 +33,8 @@ GLuint Renderer::Impl::sampler(float level) {
     return s;
 }
 
-// The split-sum table (specular.h) as an RG32F texture on unit 3, made the first time a layered
-// material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
+// The split-sum table (specular.h) as an RG32F texture on TextureUnit::SplitSum, made the first
+// time a layered material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
 void Renderer::Impl::bindSplitSum() {
     if (splitSumTexture == 0) {
         const SplitSumTable& table = SplitSumTable::shared();

@@ -141,7 +141,7 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
     const bool roughnessMapped = bindMaps(mapUniforms, m.layers);
     if (roughnessMapped && !plan.specular.mirror) {
-        // Each fragment picks its own lobe (object.frag, readLobePerFragment): the stack where
+        // Each fragment picks its own lobe (object.frag, readLevel): the stack where
         // it holds it, else the chain at that lobe's level, which needs the chain from level 0.
         plan.specular.minLevel = 0.0f;
     }

@@ -40,7 +40,7 @@ struct Renderer::Impl {
     QOpenGLFunctions_4_1_Core* gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> objectProgram, backgroundProgram, toneProgram, aovProgram, outlineProgram;
     // object.frag and aov.frag built with MATERIAL_MAPS: the layered materials with texture maps
-    // (MaterialMaps::inUse), drawn after the others (material_maps.glsl says why apart).
+    // (MaterialMaps::inUse), drawn after the others (object.frag says why apart).
     std::unique_ptr<QOpenGLShaderProgram> objectMapsProgram, aovMapsProgram;
     GLuint emptyVao = 0;
 
@@ -90,7 +90,6 @@ struct Renderer::Impl {
 
     RenderCounters counters;
 
-
     // Whether the stack on the GPU was made from the current environment.
     bool stackCurrent() const {
         return !stackEntries.empty() && environment && environment->filter &&
@@ -116,8 +115,8 @@ struct Renderer::Impl {
     // GPU resources (gpu_resources.cpp).
     // The sampler reading the chain from `level` on (GL_TEXTURE_MIN_LOD = level).
     GLuint sampler(float level);
-    // The split-sum table (specular.h) as an RG32F texture on unit 3, made the first time a layered
-    // material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
+    // The split-sum table (specular.h) as an RG32F texture on TextureUnit::SplitSum, made the first
+    // time a layered material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
     void bindSplitSum();
     // The GL texture of map `ref` (sRGB or linear), uploaded the first time; 0 when its image is
     // not decoded (yet, or refused: TextureCache::problem).
@@ -148,13 +147,17 @@ struct Renderer::Impl {
     // the factors. Returns whether the roughness map is read (each fragment its own lobe).
     bool bindMaps(const MapUniforms& u, const Layers& l);
     // Sets a layered material's uniforms and binds its three lookups.
-    ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady);
+    ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms,
+                           const Material& m, bool irradianceReady);
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
-    void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum, bool aov, bool mapped);
+    void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
+                     const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum,
+                     bool aov, bool mapped);
     static bool drawsMaps(const Material& m) { return m.layered && m.layers.maps.inUse(); }
     // The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
-    void drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum);
+    void drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection,
+                        const glm::mat3& envRotation, const Frustum& frustum);
 
     // The outline pass (outline_pass.cpp).
     // The highlighted object's outline (setHighlightedObject), after everything else so nothing
