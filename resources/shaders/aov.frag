@@ -2,35 +2,11 @@
 // The renders anyone can check (mipgloss render --aov): per pixel, the direction the environment
 // is read at (after the environment's rotation, i.e. in the frame of the baked faces), the Phong
 // exponent of the lobe the pixel shows, and whether the pixel is meant to equal that lobe at that
-// direction. The lookup mirrors object.frag. A layered material adds, per layer, the direction it
-// read, its lobe and the weight object.frag multiplies that lobe by (layered.glsl), so the picture
-// at an exact pixel is Σ weight ⊙ lobe(direction); the single-lobe fields then describe its
-// specular layer.
-in vec3 vWorldPosition;
-in vec3 vNormal;
-
-uniform samplerCube uEnvironment;
-uniform samplerCube uIrradiance;
-uniform vec3 uCameraPosition;
-uniform mat3 uEnvironmentRotation;
-uniform int uLookup;
-uniform bool uUseStack;
-uniform bool uSharperAtGrazing;
-uniform float uLambda;
-uniform float uExponent;       // the lobe the material means (+inf for a mirror)
-uniform bool uLayered;
-uniform samplerCube uCoatChain;
-uniform bool uUseCoatStack;
-uniform bool uUseDiffuseStack;
-uniform bool uDiffuseIrradiance;
-uniform float uCoatExponent;
-
-#include "layered.glsl"
-#ifdef MATERIAL_MAPS
-#include "material_maps.glsl"
-#endif
-#include "cube_lod.glsl"
-#include "lobe_stack.glsl"
+// direction. The same shading plan as object.frag (shading_plan.glsl): plan, classify, write. A
+// layered material adds, per layer, the direction it read, its lobe and the weight object.frag
+// multiplies that lobe by (layered.glsl), so the picture at an exact pixel is
+// Σ weight ⊙ lobe(direction); the single-lobe fields then describe its specular layer.
+#include "shading_plan.glsl"
 
 layout(location = 0) out vec4 aovDirection;  // xyz: unit direction, w: exponent
 layout(location = 1) out vec4 aovExact;      // x: 1 exact, 0 not
@@ -60,100 +36,30 @@ bool lobeRead(bool useStack, float n, vec3 d, vec3 dx, vec3 dy, samplerCube chai
     return (fromStack && complete) || mirrorBase;
 }
 
+// What one layer's read (object.frag, readLayer) shows: its lobe (1 for the irradiance map) and
+// whether it is exact. The grazing option's λ = 0 reads the chain's base standing in for the
+// mirror: not exact.
+bool classifyLayer(samplerCube chain, LayerRead r, out float shown) {
+    shown = r.exponent;
+    if (r.kind == READ_IRRADIANCE) return baseOnly(uIrradiance, r.direction);
+    if (r.grazingMirror) return false;
+    return lobeRead(r.useStack, r.exponent, r.direction, r.dx, r.dy, chain, shown);
+}
+
 void main() {
-    vec3 n = normalize(vNormal);
-    vec3 v = normalize(uCameraPosition - vWorldPosition);
-    if (!gl_FrontFacing) n = -n;
-    float cosView = clamp(dot(n, v), 0.0, 1.0);
-    vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
-    vec3 normal = normalize(uEnvironmentRotation * n);
-    vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
-    aovDiffuseDirection = vec4(0.0);
-    aovDiffuseWeight = vec4(0.0, 0.0, 0.0, cosView);
-    aovSpecularWeight = vec4(0.0);
-    aovCoatDirection = vec4(0.0);
-    aovCoatWeight = vec4(0.0);
-#ifdef MATERIAL_MAPS
-    {
-        // object.frag's mapped branch: the mapped normal's directions, each fragment's own
-        // specular lobe from the roughness map, the weights from the mapped base colour and
-        // metallic, times the occlusion. Emission is not a lobe: an emitting pixel is not exact.
-        MaterialSample s = sampleMaterial(n);
-        vec3 mn = s.normal;
-        float mCos = clamp(dot(mn, v), 0.0, 1.0);
-        vec3 mr = normalize(uEnvironmentRotation * reflect(-v, mn));
-        vec3 mnormal = normalize(uEnvironmentRotation * mn);
-        vec3 mrdx = dFdx(mr), mrdy = dFdy(mr), mndx = dFdx(mnormal), mndy = dFdy(mnormal);
-        float exponent = uUseRoughnessMap ? roughnessExponent(s.roughness) : uExponent;
-        vec3 wDiffuse, wSpecular, wCoat;
-        layerWeightsOf(mCos, mix(vec3(uSpecular), s.baseColor, s.metallic), s.baseColor * (1.0 - s.metallic),
-                       uUseRoughnessMap ? exponentLambda(exponent) : uSpecularLambda, wDiffuse, wSpecular, wCoat);
-        float specularShown, diffuseShown = 1.0, coatShown = uCoatExponent;
-        bool exact = lobeRead(uUseStack, exponent, mr, mrdx, mrdy, uEnvironment, specularShown);
-        if (uDiffuseIrradiance)
-            exact = exact && baseOnly(uIrradiance, mnormal);
-        else
-            exact = lobeRead(uUseDiffuseStack, 1.0, mnormal, mndx, mndy, uEnvironment, diffuseShown) && exact;
-        if (uCoat > 0.0)
-            exact = lobeRead(uUseCoatStack, uCoatExponent, mr, mrdx, mrdy, uCoatChain, coatShown) && exact;
-        exact = exact && all(equal(s.emissive, vec3(0.0)));
-        if (s.cut) discard;
-        aovDirection = vec4(mr, specularShown);
-        aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
-        aovDiffuseDirection = vec4(mnormal, diffuseShown);
-        aovDiffuseWeight = vec4(s.occlusion * wDiffuse, mCos);
-        aovSpecularWeight = vec4(s.occlusion * wSpecular, 0.0);
-        if (uCoat > 0.0) {
-            aovCoatDirection = vec4(mr, coatShown);
-            aovCoatWeight = vec4(s.occlusion * wCoat, 0.0);
-        }
-    }
-#else
-    if (uLayered) {
-        vec3 wDiffuse, wSpecular, wCoat;
-        layerWeights(cosView, wDiffuse, wSpecular, wCoat);
-        float specularShown, diffuseShown = 1.0, coatShown = uCoatExponent;
-        bool exact = lobeRead(uUseStack, uExponent, r, rdx, rdy, uEnvironment, specularShown);
-        if (uDiffuseIrradiance)
-            exact = exact && baseOnly(uIrradiance, normal);
-        else
-            exact = lobeRead(uUseDiffuseStack, 1.0, normal, ndx, ndy, uEnvironment, diffuseShown) && exact;
-        if (uCoat > 0.0)
-            exact = lobeRead(uUseCoatStack, uCoatExponent, r, rdx, rdy, uCoatChain, coatShown) && exact;
-        aovDirection = vec4(r, specularShown);
-        aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
-        aovDiffuseDirection = vec4(normal, diffuseShown);
-        aovDiffuseWeight = vec4(wDiffuse, cosView);
-        aovSpecularWeight = vec4(wSpecular, 0.0);
-        if (uCoat > 0.0) {
-            aovCoatDirection = vec4(r, coatShown);
-            aovCoatWeight = vec4(wCoat, 0.0);
-        }
-        return;
-    }
-    bool reflectLookup = uLookup == LOOKUP_REFLECT;
-    vec3 direction = reflectLookup ? r : normal;
-    vec3 ddx = reflectLookup ? rdx : ndx, ddy = reflectLookup ? rdy : ndy;
-    float exponent = uLookup == LOOKUP_IRRADIANCE ? 1.0 : uExponent;
-    bool exact = false;
-    if (uLookup == LOOKUP_IRRADIANCE) {
-        exact = baseOnly(uIrradiance, direction);
-    } else if (uSharperAtGrazing) {
-        // The fragment's own λ (object.frag): exact where the stack holds it.
-        float lambda = uLambda * (1.0 - pow(1.0 - cosView, 5.0));
-        if (lambda > 0.0) {
-            float shown;
-            exact = lobeRead(uUseStack, grazingExponent(lambda), direction, ddx, ddy, uEnvironment, shown);
-            exponent = shown;
-        } else {
-            exponent = intBitsToFloat(0x7f800000);  // +inf: the mirror, read through the chain
-        }
-    } else {
-        float shown;
-        exact = lobeRead(uUseStack, exponent, direction, ddx, ddy, uEnvironment, shown);
-        exponent = shown;
-    }
-    aovDirection = vec4(direction, exponent);
+    FragmentPlan p = planFragment();
+    float specularShown, diffuseShown, coatShown;
+    bool exact = classifyLayer(uEnvironment, p.specular, specularShown);
+    bool diffuse = p.diffuse.kind != READ_NONE, coat = p.coat.kind != READ_NONE;
+    if (diffuse) exact = classifyLayer(uEnvironment, p.diffuse, diffuseShown) && exact;
+    if (coat) exact = classifyLayer(uCoatChain, p.coat, coatShown) && exact;
+    exact = exact && all(equal(p.emissive, vec3(0.0)));  // emission is not a lobe
+    if (p.cut) discard;
+    aovDirection = vec4(p.specular.direction, specularShown);
     aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
-#endif
+    aovDiffuseDirection = diffuse ? vec4(p.diffuse.direction, diffuseShown) : vec4(0.0);
+    aovDiffuseWeight = vec4(p.occlusion * p.wDiffuse, p.cosView);
+    aovSpecularWeight = p.layered ? vec4(p.occlusion * p.wSpecular, 0.0) : vec4(0.0);
+    aovCoatDirection = coat ? vec4(p.coat.direction, coatShown) : vec4(0.0);
+    aovCoatWeight = coat ? vec4(p.occlusion * p.wCoat, 0.0) : vec4(0.0);
 }

@@ -1,7 +1,6 @@
 // The layered material's weights (core/scene/layered.h, layerWeights), from the split-sum table
-// (core/ibl/specular.h, SplitSumTable) uploaded as uSplitSum. Included by object.frag and aov.frag
-// (the renderer's loader puts this file where they say #include "layered.glsl").
-uniform sampler2D uSplitSum;  // unit 3, RG = (A, B) at the table's nodes
+// (core/ibl/specular.h, SplitSumTable) uploaded as uSplitSum. Included by shading_plan.glsl.
+uniform sampler2D uSplitSum;  // TEXTURE_UNIT_SPLIT_SUM, RG = (A, B) at the table's nodes
 uniform vec3 uF0;             // mix(specular, baseColor, metallic)
 uniform vec3 uDiffuseColour;  // baseColor · (1 − metallic)
 uniform float uSpecularLambda;

@@ -2,9 +2,9 @@
 // one 2D atlas, each face with its one-texel border, read at their base level only. Any lobe n
 // (per object or per fragment) is the blend of its two neighbours with the weight that keeps its
 // mean cosine (stackBlend in lobes.h); a fragment whose footprint is wider than its lobe reads
-// the wider lobe the footprint makes (footprintExponent). Included by object.frag, aov.frag and
+// the wider lobe the footprint makes (footprintExponent). Included by shading_plan.glsl and
 // background.frag.
-uniform sampler2D uStack;                   // unit 2: the atlas (RGB9_E5), linear, no mips
+uniform sampler2D uStack;                   // TEXTURE_UNIT_STACK: the atlas (RGB9_E5), linear, no mips
 uniform vec4 uStackEntry[STACK_SLOTS];      // per entry: block origin x, y (texels), face size, 1 when present
 uniform float uStackExponent[STACK_SLOTS];  // per entry: its exponent
 uniform float uStackScale[STACK_SLOTS];     // per entry: what its stored texels are multiplied by
@@ -36,8 +36,10 @@ vec3 stackEntryAt(int j, vec3 d) {
     return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb * uStackScale[j];
 }
 
-// λ(n) = log2(128·√3) − ½·log2(n + 1) (phong.h), for finding n's neighbours.
-float stackLambdaOf(float n) { return 0.5 * log2(LAMBDA_EXPONENT_SCALE) - 0.5 * log2(n + 1.0); }
+// λ ↔ n, the one place in GLSL (phong.h, exponentToLambda and lambdaToExponent):
+// λ(n) = max(0, log2(128·√3) − ½·log2(n + 1)), 0 for the mirror; n(λ) = 3·128²·4^−λ − 1 clamped at 0.
+float exponentLambda(float n) { return isinf(n) ? 0.0 : max(0.0, 0.5 * log2(LAMBDA_EXPONENT_SCALE / (n + 1.0))); }
+float grazingExponent(float lambda) { return max(LAMBDA_EXPONENT_SCALE * exp2(-2.0 * lambda) - 1.0, 0.0); }
 
 // Whether lobe n is one the stack can hold (finite, not sharper than its top entry).
 bool stackRange(float n) { return n >= 0.0 && !isinf(n) && n <= uStackExponent[uStackTop]; }
@@ -45,7 +47,7 @@ bool stackRange(float n) { return n >= 0.0 && !isinf(n) && n <= uStackExponent[u
 // The entry on n's sharper side (stackBlend in lobes.h): the last from the top whose lobe is at
 // least as sharp. n must be in stackRange.
 int stackSharperIndex(float n) {
-    int j = clamp(int(floor(stackLambdaOf(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
+    int j = clamp(int(floor(exponentLambda(n) * float(STACK_STEPS_PER_LEVEL))), uStackTop, STACK_LAST);
     if (j > uStackTop && uStackExponent[j] < n) --j;
     if (j < STACK_LAST && uStackExponent[j + 1] >= n) ++j;
     return j;
@@ -109,6 +111,3 @@ float footprintLimitedExponent(float n, vec3 dx, vec3 dy, out bool complete) {
     }
     return shown;
 }
-
-// n(λ) = 3·128²·4^−λ − 1 clamped at 0 (phong.h), for a λ > 0 made per fragment.
-float grazingExponent(float lambda) { return max(LAMBDA_EXPONENT_SCALE * exp2(-2.0 * lambda) - 1.0, 0.0); }

@@ -1,15 +1,16 @@
 // A layered material's texture maps (core/scene/scene.h, MaterialMaps; docs/assets.md), read at
-// the fragment's UV. Included by object.frag and aov.frag, after layered.glsl, when they are built
-// with MATERIAL_MAPS: the programs that draw the materials with maps (MaterialMaps::inUse).
+// the fragment's UV. Included by shading_plan.glsl, after layered.glsl, when object.frag and aov.frag
+// are built with MATERIAL_MAPS: the programs that draw the materials with maps (MaterialMaps::inUse).
 in vec2 vUv;
 in vec4 vTangent;  // world xyz, w: the bitangent's sign
 
-uniform sampler2D uBaseColorMap;  // unit 8: sRGB, so reads are linear
-uniform sampler2D uMetallicMap;   // unit 9
-uniform sampler2D uRoughnessMap;  // unit 10
-uniform sampler2D uNormalMap;     // unit 11
-uniform sampler2D uOcclusionMap;  // unit 12
-uniform sampler2D uEmissiveMap;   // unit 13: sRGB
+// From unit TEXTURE_UNIT_FIRST_MAP on, in this order (texture_units.h).
+uniform sampler2D uBaseColorMap;  // sRGB, so reads are linear
+uniform sampler2D uMetallicMap;
+uniform sampler2D uRoughnessMap;
+uniform sampler2D uNormalMap;
+uniform sampler2D uOcclusionMap;
+uniform sampler2D uEmissiveMap;   // sRGB
 uniform bool uUseBaseColorMap, uUseMetallicMap, uUseRoughnessMap, uUseNormalMap, uUseOcclusionMap, uUseEmissiveMap;
 uniform int uMetallicChannel, uRoughnessChannel;
 uniform vec3 uBaseColor;
@@ -64,6 +65,3 @@ MaterialSample sampleMaterial(vec3 n) {
 float roughnessExponent(float r) {
     return r > 0.0 ? ROUGHNESS_FIT * (1.0 / (r * r * r * r) - 1.0) : intBitsToFloat(0x7f800000);
 }
-
-// λ(n) = max(0, log2(128·√3) − ½·log2(n + 1)) (phong.h, exponentToLambda).
-float exponentLambda(float n) { return isinf(n) ? 0.0 : max(0.0, 0.5 * log2(LAMBDA_EXPONENT_SCALE / (n + 1.0))); }

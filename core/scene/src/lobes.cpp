@@ -181,4 +181,39 @@ LobeStackAtlas lobeStackAtlas(const std::vector<std::pair<int, int>>& entries, i
     return atlas;
 }
 
+PackedLobeStack packLobeStack(const std::vector<std::pair<int, const CubeMap*>>& entries, int maxWidth) {
+    std::vector<std::pair<int, int>> sizes;
+    for (const auto& [index, cube] : entries) sizes.emplace_back(index, cube->size());
+    PackedLobeStack packed;
+    packed.atlas = lobeStackAtlas(sizes, maxWidth);
+    const auto atlasWidth = static_cast<std::size_t>(packed.atlas.width);
+    packed.texels.assign(atlasWidth * static_cast<std::size_t>(packed.atlas.height) * 3, 0.0f);
+    packed.scales.assign(entries.size(), 1.0f);
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+        const AtlasPlacement& at = packed.atlas.placed[e];
+        const CubeMap& cube = *entries[e].second;
+        const int stride = cube.size() + 2;
+        float largest = 0.0f;
+        for (Face f : kAllFaces)
+            for (const Rgb& c : cube.faceStorage(f)) largest = std::max({largest, c.r, c.g, c.b});
+        // 2^k with largest·2^k in [32704, 65408): exact, and within float's range for any entry
+        // (the import keeps radiance in [0, 1e20], and a map at 1e-30 still has 2^99 of room).
+        const float scale = largest > 0.0f ? std::exp2(std::floor(std::log2(65408.0f / largest))) : 1.0f;
+        packed.scales[e] = 1.0f / scale;
+        for (Face f : kAllFaces) {
+            const std::vector<Rgb>& face = cube.faceStorage(f);  // (size + 2)² with the border, row 0 first
+            const int fx = at.x + (static_cast<int>(f) % 3) * stride, fy = at.y + (static_cast<int>(f) / 3) * stride;
+            for (int y = 0; y < stride; ++y)
+                for (int x = 0; x < stride; ++x) {
+                    const Rgb& c = face[static_cast<std::size_t>(y) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x)];
+                    float* t = &packed.texels[(static_cast<std::size_t>(fy + y) * atlasWidth + static_cast<std::size_t>(fx + x)) * 3];
+                    t[0] = c.r * scale;
+                    t[1] = c.g * scale;
+                    t[2] = c.b * scale;
+                }
+        }
+    }
+    return packed;
+}
+
 }  // namespace mipgloss

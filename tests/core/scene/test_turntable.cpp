@@ -17,7 +17,7 @@ using namespace mipgloss;
 
 namespace {
 
-// The renderer's world -> environment direction (ui/render/src/renderer.cpp, environmentRotation):
+// The renderer's world -> environment direction (ui/render/src/renderer_impl.h, environmentRotation):
 // turning the environment by φ is looking up Ry(−φ)·d. Restated here: core tests link no GL.
 glm::mat3 environmentLookup(float degrees) {
     return glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(-degrees), glm::vec3(0, 1, 0)));

@@ -120,4 +120,18 @@ struct LobeStackAtlas {
 // `entries`: (index, face size) pairs.
 LobeStackAtlas lobeStackAtlas(const std::vector<std::pair<int, int>>& entries, int maxWidth = 4096);
 
+// The entries' texels as the renderer sends them (GL_RGB9_E5: a shared exponent, 9-bit mantissas,
+// each texel's largest channel within 2^-10, the others within 2^-10 of it): every face with its
+// border at its place in `atlas`, RGB, row 0 first, zero between blocks; each entry multiplied by
+// the power of two 2^k that brings its largest value into [32704, 65408), just under the format's
+// 65408, so no environment's absolute scale matters (docs/lobe-stack.md). The shader multiplies
+// it back by `scales` (one per entry given, 2^-k; 1 for an entry that is all zero).
+struct PackedLobeStack {
+    LobeStackAtlas atlas;
+    std::vector<float> texels;
+    std::vector<float> scales;
+};
+// `entries`: (index, cube) pairs, cubes with their one-texel borders filled (CubeMap::faceStorage).
+PackedLobeStack packLobeStack(const std::vector<std::pair<int, const CubeMap*>>& entries, int maxWidth = 4096);
+
 }  // namespace mipgloss

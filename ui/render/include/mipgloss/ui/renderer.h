@@ -111,6 +111,10 @@ public:
     // again when the set changes). Entries made from another environment than the current one
     // are not read.
     void setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes);
+    // The decoded images the scene's texture maps read: the caller's (one per document or command),
+    // shared because a worker may be filling it while frames are drawn. Null: every map is drawn as
+    // missing (the material without it).
+    void setTextures(std::shared_ptr<const TextureCache> textures);
 
     // Draws into framebuffer `targetFbo` (0 = default) of `width` × `height` pixels.
     void render(const Scene& scene, const OrbitCamera& camera, int width, int height,
@@ -134,11 +138,6 @@ public:
     // found even behind another. The window's view sets it; pictures written to files never do.
     void setHighlightedObject(int index);
     static constexpr float kOutlineWidthPixels = 2.0f;
-
-    // The decoded images the scene's texture maps read: the caller's (one per document or command),
-    // shared because a worker may be filling it while frames are drawn. Null: every map is drawn as
-    // missing (the material without it).
-    void setTextures(std::shared_ptr<const TextureCache> textures);
 
     // The same view's per-pixel directions, exponents and exactness (no multisampling; pixels
     // next to the background or to another lobe are never exact).

@@ -1,0 +1,156 @@
+// The shading plan every object fragment goes through, whatever its material (Filament's main.fs
+// shape: plan, then its consumers): object.frag reads and sums it, aov.frag classifies and writes
+// it. A material is up to three layers (layered.h: the diffuse base, the specular layer, the
+// clear coat), each one lookup (Ashikhmin & Ghosh 2002, §4) with its direction, footprint and
+// lobe, summed with the weights of layered.glsl; a single-lobe material is its specular layer
+// alone, weighted by its tint. Texture maps (MATERIAL_MAPS, material_maps.glsl) give the shading
+// normal, the weights and, with a roughness map, each fragment its own specular lobe.
+in vec3 vWorldPosition;
+in vec3 vNormal;
+
+uniform samplerCube uEnvironment;  // TEXTURE_UNIT_CHAIN: the chain (or the mirror), specular layer and single lobe
+uniform samplerCube uIrradiance;   // TEXTURE_UNIT_IRRADIANCE: E/π
+uniform vec3 uCameraPosition;
+uniform mat3 uEnvironmentRotation;  // world direction -> environment direction
+uniform vec3 uTint;
+uniform int uLookup;       // LOOKUP_REFLECT, LOOKUP_NORMAL or LOOKUP_IRRADIANCE (lookup_plan.h)
+uniform bool uUseStack;    // read the lobe stack where it holds the lobe (else the chain)
+uniform float uExponent;   // the lobe the material means (+inf for a mirror)
+uniform bool uSharperAtGrazing;
+uniform float uLambda;       // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
+uniform float uLevelOffset;  // chain level of λ: λ + uLevelOffset (phong.h), for per-fragment lobes
+uniform float uLastLevel;    // the chain's last read level
+uniform bool uLayered;
+uniform samplerCube uCoatChain;     // TEXTURE_UNIT_COAT_CHAIN: the chain at the coat's level (or the mirror)
+uniform samplerCube uDiffuseChain;  // TEXTURE_UNIT_DIFFUSE_CHAIN: the chain at the n = 1 level
+uniform bool uUseCoatStack;
+uniform bool uUseDiffuseStack;
+uniform bool uDiffuseIrradiance;    // the base from the irradiance map
+uniform float uCoatExponent;
+
+#include "layered.glsl"
+#ifdef MATERIAL_MAPS
+#include "material_maps.glsl"
+#endif
+#include "cube_lod.glsl"
+#include "lobe_stack.glsl"
+
+// How a layer is read.
+const int READ_NONE = 0;        // the material has no such layer
+const int READ_LOBE = 1;        // lobe n: the stack's, widened by the footprint, where it holds it, else the
+                                // layer's chain through its sampler (MIN_LOD: the level standing in for n)
+const int READ_IRRADIANCE = 2;  // the irradiance map
+const int READ_LEVEL = 3;       // a lobe chosen per fragment: the stack's where `useStack` and it holds it,
+                                // else the chain at λ's own level, never sharper than the footprint's
+
+struct LayerRead {
+    int kind;
+    vec3 direction, dx, dy;  // unit, in the environment's frame; its change to the next pixels
+    float exponent;          // n (+inf: the mirror)
+    float lambda;            // READ_LEVEL: the λ whose chain level stands in for n
+    bool useStack;
+    bool grazingMirror;      // READ_LEVEL at the grazing option's λ = 0: the chain's base, not a lobe
+};
+
+struct FragmentPlan {
+    bool layered;
+    float cosView;  // N·v with the shading normal
+    LayerRead diffuse, specular, coat;
+    vec3 wDiffuse, wSpecular, wCoat;  // what each layer's value is multiplied by
+    float occlusion;                  // multiplies the sum (1 without maps)
+    vec3 emissive;                    // added to it (0 without maps)
+    bool cut;                         // alpha below the mask's cutoff: no fragment
+};
+
+LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) {
+    LayerRead r;
+    r.kind = kind;
+    r.direction = d;
+    r.dx = dx;
+    r.dy = dy;
+    r.exponent = n;
+    r.lambda = 0.0;
+    r.useStack = useStack;
+    r.grazingMirror = false;
+    return r;
+}
+
+LayerRead noRead() { return layerRead(READ_NONE, vec3(0.0), vec3(0.0), vec3(0.0), 0.0, false); }
+
+// The grazing option: λ falls to 0 as the view grazes the surface, with Schlick's (1 − cos θ)^5
+// weight, the paper's §6 wish that glossy reflections sharpen at grazing angles. Each fragment
+// reads its own lobe n(λ) from the stack; where the stack does not hold it (near the mirror), the
+// chain at its level, with the footprint's level kept; λ = 0 reads the chain's base.
+LayerRead grazingRead(vec3 d, vec3 dx, vec3 dy, float cosView) {
+    float lambda = uLambda * (1.0 - pow(1.0 - cosView, 5.0));
+    bool glossy = lambda > 0.0;
+    LayerRead r = layerRead(READ_LEVEL, d, dx, dy, glossy ? grazingExponent(lambda) : intBitsToFloat(0x7f800000),
+                            uUseStack && glossy);
+    r.lambda = lambda;
+    r.grazingMirror = !glossy;
+    return r;
+}
+
+FragmentPlan planFragment() {
+    vec3 n = normalize(vNormal);
+    vec3 v = normalize(uCameraPosition - vWorldPosition);
+    // Open meshes (the teapot's lid gap) show their inside: light it with the inward normal.
+    if (!gl_FrontFacing) n = -n;
+    FragmentPlan p;
+    p.occlusion = 1.0;
+    p.emissive = vec3(0.0);
+    p.cut = false;
+#ifdef MATERIAL_MAPS
+    // The mapped normal gives both lookup directions (material_maps.glsl).
+    MaterialSample s = sampleMaterial(n);
+    n = s.normal;
+    p.occlusion = s.occlusion;
+    p.emissive = s.emissive;
+    p.cut = s.cut;
+#endif
+    p.cosView = clamp(dot(n, v), 0.0, 1.0);
+    // Both lookup directions and their footprints, in uniform control flow.
+    vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
+    vec3 normal = normalize(uEnvironmentRotation * n);
+    vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
+#ifdef MATERIAL_MAPS
+    p.layered = true;
+#else
+    p.layered = uLayered;
+    if (!uLayered) {
+        bool reflectLookup = uLookup == LOOKUP_REFLECT;
+        vec3 d = reflectLookup ? r : normal, ddx = reflectLookup ? rdx : ndx, ddy = reflectLookup ? rdy : ndy;
+        if (uLookup == LOOKUP_IRRADIANCE)
+            p.specular = layerRead(READ_IRRADIANCE, d, ddx, ddy, 1.0, false);
+        else if (uSharperAtGrazing)
+            p.specular = grazingRead(d, ddx, ddy, p.cosView);
+        else
+            p.specular = layerRead(READ_LOBE, d, ddx, ddy, uExponent, uUseStack);
+        p.diffuse = noRead();
+        p.coat = noRead();
+        p.wDiffuse = vec3(0.0);
+        p.wSpecular = uTint;
+        p.wCoat = vec3(0.0);
+        return p;
+    }
+#endif
+    p.specular = layerRead(READ_LOBE, r, rdx, rdy, uExponent, uUseStack);
+#ifdef MATERIAL_MAPS
+    float specularLambda = uSpecularLambda;
+    if (uUseRoughnessMap) {
+        // The mapped roughness: each fragment its own specular lobe.
+        p.specular = layerRead(READ_LEVEL, r, rdx, rdy, roughnessExponent(s.roughness), uUseStack);
+        p.specular.lambda = exponentLambda(p.specular.exponent);
+        specularLambda = p.specular.lambda;
+    }
+    // The weights from the mapped base colour and metallic.
+    layerWeightsOf(p.cosView, mix(vec3(uSpecular), s.baseColor, s.metallic), s.baseColor * (1.0 - s.metallic),
+                   specularLambda, p.wDiffuse, p.wSpecular, p.wCoat);
+#else
+    layerWeights(p.cosView, p.wDiffuse, p.wSpecular, p.wCoat);
+#endif
+    p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
+                                   : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
+    p.coat = uCoat > 0.0 ? layerRead(READ_LOBE, r, rdx, rdy, uCoatExponent, uUseCoatStack) : noRead();
+    return p;
+}

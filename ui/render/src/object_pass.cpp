@@ -1,0 +1,257 @@
+// The object pass: each visible object drawn with object.frag (or aov.frag for the AOV), its
+// material's uniforms set and its lookups bound as the lookup plan says (lookup_plan.h).
+#include "renderer_impl.h"
+
+#include "mipgloss/scene/layered.h"
+#include "mipgloss/scene/lobes.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mipgloss::ui {
+
+// Where a program takes a layered material's values, resolved once per drawObjects call (a
+// name lookup per uniform per object would sit in the draw loop).
+struct Renderer::Impl::LayeredUniforms {
+    explicit LayeredUniforms(QOpenGLShaderProgram& p)
+        : f0(p.uniformLocation("uF0")),
+          diffuseColour(p.uniformLocation("uDiffuseColour")),
+          specularLambda(p.uniformLocation("uSpecularLambda")),
+          coat(p.uniformLocation("uCoat")),
+          coatLambda(p.uniformLocation("uCoatLambda")),
+          coatExponent(p.uniformLocation("uCoatExponent")),
+          useCoatStack(p.uniformLocation("uUseCoatStack")),
+          useDiffuseStack(p.uniformLocation("uUseDiffuseStack")),
+          diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")) {}
+    int f0, diffuseColour, specularLambda, coat, coatLambda, coatExponent, useCoatStack, useDiffuseStack,
+        diffuseIrradiance;
+};
+
+// The uniforms a single-lobe material shares with a layered one's specular layer.
+struct Renderer::Impl::LobeUniforms {
+    int useStack, exponent;
+};
+
+// What drawing one object read: the stack's exact lobes (the settled picture), or the chain
+// standing in for a lobe while its entries are made.
+struct Renderer::Impl::ObjectRead {
+    bool settled = false;
+    bool fromChain = false;
+};
+
+// Where a program takes a material's maps (material_maps.glsl), resolved once per drawObjects call.
+struct Renderer::Impl::MapUniforms {
+    explicit MapUniforms(QOpenGLShaderProgram& p)
+        : metallicChannel(p.uniformLocation("uMetallicChannel")),
+          roughnessChannel(p.uniformLocation("uRoughnessChannel")),
+          baseColor(p.uniformLocation("uBaseColor")),
+          baseAlpha(p.uniformLocation("uBaseAlpha")),
+          metallic(p.uniformLocation("uMetallic")),
+          roughness(p.uniformLocation("uRoughness")),
+          specular(p.uniformLocation("uSpecular")),
+          normalScale(p.uniformLocation("uNormalScale")),
+          occlusionStrength(p.uniformLocation("uOcclusionStrength")),
+          emissive(p.uniformLocation("uEmissive")),
+          alphaMode(p.uniformLocation("uAlphaMode")),
+          alphaCutoff(p.uniformLocation("uAlphaCutoff")) {
+        const char* use[kMapCount] = {"uUseBaseColorMap", "uUseMetallicMap", "uUseRoughnessMap",
+                                      "uUseNormalMap", "uUseOcclusionMap", "uUseEmissiveMap"};
+        for (int i = 0; i < kMapCount; ++i) uses[i] = p.uniformLocation(use[i]);
+    }
+    int metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
+        normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff;
+    int uses[kMapCount];  // the samplers' units are set once (texture_units.h)
+};
+
+// The stack's table and atlas for `program` (object, AOV and background programs).
+void Renderer::Impl::bindStack(QOpenGLShaderProgram& program) {
+    const bool current = stackCurrent();
+    std::array<glm::vec4, kStackSlots> table = stackTable;
+    if (!current)
+        for (glm::vec4& e : table) e.w = 0.0f;
+    gl->glUniform4fv(program.uniformLocation("uStackEntry"), kStackSlots, glm::value_ptr(table[0]));
+    gl->glUniform1fv(program.uniformLocation("uStackExponent"), kStackSlots, stackExponents.data());
+    gl->glUniform1fv(program.uniformLocation("uStackScale"), kStackSlots, stackScales.data());
+    gl->glUniform1i(program.uniformLocation("uStackTop"), stackTop(std::max(stackBaseSize, 1)));
+    gl->glActiveTexture(GL_TEXTURE0 + unitIndex(TextureUnit::Stack));
+    gl->glBindTexture(GL_TEXTURE_2D, stackTexture);
+    gl->glBindSampler(unitIndex(TextureUnit::Stack), 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+}
+
+// Binds the chain (or, for a mirror, the mirror texture) to `unit` with the sampler holding
+// the plan's MIN_LOD; unit 0 stays active.
+void Renderer::Impl::bindChain(const ObjectLookup& plan, GLuint unit) {
+    gl->glActiveTexture(GL_TEXTURE0 + unit);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, plan.mirror ? mirrorTexture : environmentTexture);
+    gl->glBindSampler(unit, sampler(plan.minLevel));
+    gl->glActiveTexture(GL_TEXTURE0);
+}
+
+// A layered material's maps: binds each decoded one to its unit (white where none) and sets
+// the factors. Returns whether the roughness map is read (each fragment its own lobe).
+bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
+    const MaterialMaps& m = l.maps;
+    if (!m.inUse()) return false;
+    if (whiteTexture == 0) {
+        const std::uint8_t white[4] = {255, 255, 255, 255};
+        gl->glGenTextures(1, &whiteTexture);
+        gl->glBindTexture(GL_TEXTURE_2D, whiteTexture);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    const TextureRef* refs[kMapCount] = {&m.baseColor, &m.metallic, &m.roughness, &m.normal, &m.occlusion, &m.emissive};
+    const bool srgb[kMapCount] = {true, false, false, false, false, true};
+    bool used[kMapCount];
+    GLuint uploaded[kMapCount];
+    // Uploads first (each binds its texture to the active unit), then the units.
+    gl->glActiveTexture(GL_TEXTURE0 + mapUnit(kMapCount));
+    for (int i = 0; i < kMapCount; ++i) uploaded[i] = mapTexture(*refs[i], srgb[i]);
+    for (int i = 0; i < kMapCount; ++i) {
+        const GLuint texture = uploaded[i];
+        used[i] = texture != 0;
+        const GLuint unit = mapUnit(i);
+        gl->glActiveTexture(GL_TEXTURE0 + unit);
+        gl->glBindTexture(GL_TEXTURE_2D, used[i] ? texture : whiteTexture);
+        gl->glBindSampler(unit, 0);
+        gl->glUniform1i(u.uses[i], used[i] ? 1 : 0);
+    }
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glUniform1i(u.metallicChannel, m.metallic.channel);
+    gl->glUniform1i(u.roughnessChannel, m.roughness.channel);
+    gl->glUniform3fv(u.baseColor, 1, glm::value_ptr(l.baseColor));
+    gl->glUniform1f(u.baseAlpha, m.baseAlpha);
+    gl->glUniform1f(u.metallic, l.metallic);
+    gl->glUniform1f(u.roughness, l.roughness);
+    gl->glUniform1f(u.specular, l.specular);
+    gl->glUniform1f(u.normalScale, m.normalScale);
+    gl->glUniform1f(u.occlusionStrength, m.occlusionStrength);
+    gl->glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissiveFactor));
+    gl->glUniform1i(u.alphaMode, static_cast<int>(m.alphaMode));
+    gl->glUniform1f(u.alphaCutoff, m.alphaCutoff);
+    return used[2];
+}
+
+// Sets a layered material's uniforms and binds its three lookups.
+Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady) {
+    bindSplitSum();
+    LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
+    const bool roughnessMapped = bindMaps(mapUniforms, m.layers);
+    if (roughnessMapped && !plan.specular.mirror) {
+        // Each fragment picks its own lobe (object.frag, readLevel): the stack where
+        // it holds it, else the chain at that lobe's level, which needs the chain from level 0.
+        plan.specular.minLevel = 0.0f;
+    }
+    const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
+    const bool specular = plan.specular.readsLobeStack &&
+                          (roughnessMapped ? stackCurrent() : stackServes(plan.specular.exponent));
+    const bool coat = plan.hasCoat && plan.coat.readsLobeStack && stackServes(plan.coat.exponent);
+    const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
+    auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
+    auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
+    gl->glUniform3fv(u.f0, 1, glm::value_ptr(specularF0(m.layers)));
+    gl->glUniform3fv(u.diffuseColour, 1, glm::value_ptr(diffuseColour(m.layers)));
+    set1f(u.specularLambda, plan.specular.lambda);
+    set1f(u.coat, plan.hasCoat ? m.layers.coat : 0.0f);
+    set1f(u.coatLambda, plan.coat.lambda);
+    set1i(lobeUniforms.useStack, specular);
+    set1f(lobeUniforms.exponent, plan.specular.exponent);
+    set1i(u.useCoatStack, coat);
+    set1f(u.coatExponent, plan.coat.exponent);
+    set1i(u.useDiffuseStack, diffuse);
+    set1i(u.diffuseIrradiance, diffuseIrradiance);
+    bindChain(plan.specular, unitIndex(TextureUnit::Chain));
+    if (plan.hasCoat) bindChain(plan.coat, unitIndex(TextureUnit::CoatChain));
+    if (!diffuseIrradiance) bindChain(plan.diffuse, unitIndex(TextureUnit::DiffuseChain));
+    auto held = [&](const ObjectLookup& layer) { return layer.mirror || stackHolds(layer.exponent); };
+    ObjectRead read;
+    read.settled = (roughnessMapped ? specular : held(plan.specular)) && (!plan.hasCoat || held(plan.coat)) &&
+                   (diffuseIrradiance || held(plan.diffuse));
+    read.fromChain = !read.settled;
+    return read;
+}
+
+// Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
+// the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
+void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum, bool aov, bool mapped) {
+    program.bind();
+    gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(viewProjection));
+    gl->glUniformMatrix3fv(program.uniformLocation("uEnvironmentRotation"), 1, GL_FALSE,
+                           glm::value_ptr(envRotation));
+    gl->glUniform3fv(program.uniformLocation("uCameraPosition"), 1, glm::value_ptr(eye));
+    const int locModel = program.uniformLocation("uModel");
+    const int locNormal = program.uniformLocation("uNormalMatrix");
+    const int locTint = program.uniformLocation("uTint");
+    const int locLookup = program.uniformLocation("uLookup");
+    const int locGrazing = program.uniformLocation("uSharperAtGrazing");
+    const int locLambda = program.uniformLocation("uLambda");
+    const LobeUniforms lobeUniforms{program.uniformLocation("uUseStack"), program.uniformLocation("uExponent")};
+    bindStack(program);
+    const int locLayered = program.uniformLocation("uLayered");
+    const LayeredUniforms layeredUniforms(program);
+    const MapUniforms mapUniforms(program);
+    // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
+    // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
+    gl->glUniform1f(program.uniformLocation("uLevelOffset"),
+                    static_cast<float>(std::log2(std::max(environmentFaceSize, 1) / 128.0) - 0.5 * std::log2(96.0)));
+    gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
+    const bool irradianceReady = uploadedIrradiance != nullptr;
+
+    for (const SceneObject& object : scene.objects) {
+        if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
+        if (drawsMaps(scene.materialOf(object)) != mapped) continue;  // the other program's
+        if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
+            if (!aov) ++counters.objectsCulled;
+            continue;
+        }
+        const GpuMesh& mesh = gpuMesh(object.mesh);
+        const Material& m = scene.materialOf(object);
+        const glm::mat4 model = object.transform.matrix();
+        const glm::mat3 rotation =
+            glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
+        gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
+        gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
+        gl->glUniform1i(locLayered, m.layered ? 1 : 0);
+        ObjectRead read;
+        if (m.layered) {
+            read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady);
+        } else {
+            const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
+            const bool stack = plan.readsLobeStack && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));
+            gl->glUniform3fv(locTint, 1, glm::value_ptr(m.tint));
+            gl->glUniform1i(locLookup, static_cast<int>(plan.lookup));
+            gl->glUniform1i(locGrazing, plan.sharperAtGrazing ? 1 : 0);
+            gl->glUniform1f(locLambda, plan.lambda);
+            gl->glUniform1i(lobeUniforms.useStack, stack ? 1 : 0);
+            gl->glUniform1f(lobeUniforms.exponent, static_cast<float>(plan.exponent));
+            // The paper's one statement per object: the sampler holding MIN_LOD, here the chain
+            // level standing in for the material's lobe where the stack does not hold it; a
+            // mirror reads the mirror texture.
+            bindChain(plan, unitIndex(TextureUnit::Chain));
+            read.settled = plan.readsLobeStack && !plan.sharperAtGrazing && stackHolds(plan.exponent);
+            read.fromChain = !read.settled && plan.readsChainForLobe();
+        }
+        gl->glBindVertexArray(mesh.vao);
+        gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        if (aov) continue;
+        ++counters.objectsDrawn;
+        ++counters.drawCalls;
+        if (read.settled) ++counters.objectsSettled;
+        else if (read.fromChain) ++counters.objectsFromChain;
+    }
+}
+
+// The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
+void Renderer::Impl::drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum) {
+    drawObjects(aov ? *aovProgram : *objectProgram, scene, eye, viewProjection, envRotation, frustum, aov, false);
+    if (std::any_of(scene.objects.begin(), scene.objects.end(),
+                    [&](const SceneObject& o) { return o.visible && o.mesh && drawsMaps(scene.materialOf(o)); }))
+        drawObjects(aov ? *aovMapsProgram : *objectMapsProgram, scene, eye, viewProjection, envRotation, frustum,
+                    aov, true);
+}
+
+}  // namespace mipgloss::ui

@@ -1,0 +1,99 @@
+#include "shaders.h"
+
+#include "texture_units.h"
+
+#include "mipgloss/scene/lookup_plan.h"
+
+#include <QFile>
+
+#include <set>
+
+namespace mipgloss::ui {
+
+namespace {
+
+const QString kShaderDir = QStringLiteral(":/mipgloss/shaders/");
+
+// `file`'s text with its #include lines (at a line's start) resolved; files already in `included`
+// become nothing.
+bool expandIncludes(const QString& file, std::set<QString>& included, QByteArray& text, std::string* error) {
+    QFile source(kShaderDir + file);
+    if (!source.open(QIODevice::ReadOnly)) {
+        if (error) *error = "shader " + file.toStdString() + ": missing";
+        return false;
+    }
+    included.insert(file);
+    text = source.readAll();
+    static constexpr char kInclude[] = "#include \"";
+    for (qsizetype at = text.indexOf(kInclude); at >= 0; at = text.indexOf(kInclude, at)) {
+        if (at > 0 && text[at - 1] != '\n') {  // only a line's start: comments may name an include
+            ++at;
+            continue;
+        }
+        const qsizetype nameStart = at + static_cast<qsizetype>(sizeof(kInclude) - 1);
+        const qsizetype nameEnd = text.indexOf('"', nameStart);
+        const qsizetype lineEnd = text.indexOf('\n', at);
+        if (nameEnd < 0 || lineEnd < nameEnd) {
+            if (error) *error = "shader " + file.toStdString() + ": malformed #include";
+            return false;
+        }
+        const QString name = QString::fromUtf8(text.mid(nameStart, nameEnd - nameStart));
+        QByteArray inserted;
+        if (!included.count(name)) {
+            if (!expandIncludes(name, included, inserted, error)) return false;
+            // #line after it, so the compiler's line numbers stay those of the including file.
+            const int lineAfter = static_cast<int>(text.left(at).count('\n')) + 2;
+            inserted += "#line " + QByteArray::number(lineAfter) + "\n";
+        }
+        text.replace(at, lineEnd + 1 - at, inserted);
+        at += inserted.size();
+    }
+    return true;
+}
+
+}  // namespace
+
+std::string textureUnitDefines() {
+    std::string text;
+    auto define = [&](const char* name, GLuint unit) { text += "#define " + std::string(name) + " " + std::to_string(unit) + "\n"; };
+    define("TEXTURE_UNIT_CHAIN", unitIndex(TextureUnit::Chain));
+    define("TEXTURE_UNIT_PICTURE", unitIndex(TextureUnit::Picture));
+    define("TEXTURE_UNIT_IRRADIANCE", unitIndex(TextureUnit::Irradiance));
+    define("TEXTURE_UNIT_STACK", unitIndex(TextureUnit::Stack));
+    define("TEXTURE_UNIT_SPLIT_SUM", unitIndex(TextureUnit::SplitSum));
+    define("TEXTURE_UNIT_COAT_CHAIN", unitIndex(TextureUnit::CoatChain));
+    define("TEXTURE_UNIT_DIFFUSE_CHAIN", unitIndex(TextureUnit::DiffuseChain));
+    define("TEXTURE_UNIT_FIRST_MAP", unitIndex(TextureUnit::FirstMap));
+    return text;
+}
+
+QByteArray assembleShader(const QString& file, const std::string& extraDefines, std::string* error) {
+    std::set<QString> included;
+    QByteArray source;
+    if (!expandIncludes(file, included, source, error)) return {};
+    const qsizetype versionEnd = source.indexOf('\n') + 1;
+    // #line keeps the compiler's line numbers those of the file.
+    source.insert(versionEnd, QByteArray::fromStdString(shaderDefines() + textureUnitDefines() + extraDefines + "#line 2\n"));
+    return source;
+}
+
+std::unique_ptr<QOpenGLShaderProgram> buildProgram(const QString& vertexFile, const QString& fragmentFile,
+                                                   std::string* error, const std::string& extraDefines) {
+    const QByteArray vertex = assembleShader(vertexFile, extraDefines, error);
+    const QByteArray fragment = assembleShader(fragmentFile, extraDefines, error);
+    if (vertex.isEmpty() || fragment.isEmpty()) return nullptr;
+    auto program = std::make_unique<QOpenGLShaderProgram>();
+    if (!program->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, vertex) ||
+        !program->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, fragment) || !program->link()) {
+        if (error) *error = "shader " + fragmentFile.toStdString() + ": " + program->log().toStdString();
+        return nullptr;
+    }
+    program->bind();
+    for (const SamplerUnit& s : kSamplerUnits)
+        if (const int location = program->uniformLocation(s.uniform); location >= 0)
+            program->setUniformValue(location, static_cast<GLint>(s.unit));
+    program->release();
+    return program;
+}
+
+}  // namespace mipgloss::ui
