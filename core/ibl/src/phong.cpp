@@ -73,6 +73,10 @@ double chainLevelForExponent(double exponent, int baseSize) {
     return static_cast<double>(last);
 }
 
+double regularScheduleLevel(double lambda, int baseSize) {
+    return lambda + std::log2(std::max(baseSize, 1) / 128.0) - 0.5 * std::log2(96.0);
+}
+
 double exponentForChainLevel(double lod, int baseSize) {
     const int last = lastReadLevel(baseSize);
     if (std::isnan(lod)) return lod;

@@ -62,7 +62,7 @@ std::string editedTeapot(Edit edit) {
 
 }  // namespace
 
-TEST(MeshImportErrors, ObjCutInAFaceLine) {
+TEST(MeshImportErrors, ObjCutInAFaceLineNamesTheLine) {
     MIPGLOSS_REQUIRE_ASSET(teapotAsset());
     TempDir dir;
     std::string text = readText(teapotAsset());
@@ -86,13 +86,13 @@ TEST(MeshImportErrors, ObjFacesReferToMissingVertices) {
     expectMeshError(dir / "missing.obj", "but the file has only 8200 vertices (truncated or corrupt file)");
 }
 
-TEST(MeshImportErrors, ObjVertexCutShort) {
+TEST(MeshImportErrors, ObjVertexWithoutThreeCoordinatesNamesTheLine) {
     TempDir dir;
     expectMeshError(dir / "short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 0.25 0.5",
                     "line 5: a vertex without three readable coordinates");
 }
 
-TEST(MeshImportErrors, ObjBadIndexToken) {
+TEST(MeshImportErrors, ObjUnreadableOrOutOfRangeFaceIndexNamesTheToken) {
     TempDir dir;
     expectMeshError(dir / "token.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x3\n",
                     "line 4: cannot read the face index 'x3'");
@@ -101,7 +101,7 @@ TEST(MeshImportErrors, ObjBadIndexToken) {
     expectMeshError(dir / "before.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", "points before the first vertex");
 }
 
-TEST(MeshImportErrors, NanVertex) {
+TEST(MeshImportErrors, NanVerticesAreCountedWithTheFirstLine) {
     MIPGLOSS_REQUIRE_ASSET(teapotAsset());
     TempDir dir;
     std::size_t n = 0;
@@ -119,7 +119,7 @@ TEST(MeshImportErrors, NanVertex) {
                     "with non-finite (NaN or infinite) coordinates");
 }
 
-TEST(MeshImportErrors, InfVertex) {
+TEST(MeshImportErrors, InfiniteVerticesAreCountedWithTheFirstLine) {
     TempDir dir;
     expectMeshError(dir / "inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nv 0 0 1e39\nf 1 2 3\nf 1 3 4\n",
                     "2 vertices with non-finite (NaN or infinite) coordinates, first at line 2");
@@ -132,13 +132,13 @@ TEST(MeshImportErrors, InfVertex) {
                     "1 vertex with non-finite (NaN or infinite) coordinates, first at line 6");
 }
 
-TEST(MeshImportErrors, AllFacesZeroArea) {
+TEST(MeshImportErrors, OnlyZeroAreaFacesIsRefused) {
     TempDir dir;
     expectMeshError(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 0 0\nf 1 2 3\nf 2 4 3\nf 1 1 2\n",
                     "all 3 faces have zero area");
 }
 
-TEST(MeshImportErrors, NoFaces) {
+TEST(MeshImportErrors, NoFacesIsRefusedWithTheVertexCount) {
     TempDir dir;
     expectMeshError(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces, only 3 vertices");
     expectMeshError(dir / "notes.obj", "# just a comment\nthis is not a mesh\n", "no vertices and no faces");
@@ -148,13 +148,13 @@ TEST(MeshImportErrors, NoFaces) {
                     "no faces, only 2 vertices");
 }
 
-TEST(MeshImportErrors, EmptyFile) {
+TEST(MeshImportErrors, EmptyFileOfEveryFormatIsCalledEmpty) {
     TempDir dir;
     for (const char* name : {"empty.obj", "empty.stl", "empty.ply", "empty.off", "empty.om"})
         expectMeshError(dir / name, "", "file is empty (0 bytes)");
 }
 
-TEST(MeshImportErrors, RandomBytes) {
+TEST(MeshImportErrors, RandomBytesAreNotTheFormatTheirNameSays) {
     TempDir dir;
     std::mt19937 rng(7);
     std::string noise(4096, '\0');
@@ -170,7 +170,7 @@ TEST(MeshImportErrors, RandomBytes) {
     expectMeshError(dir / "tiny.stl", noise.substr(0, 40), "not an STL file: too short for binary STL (40 bytes)");
 }
 
-TEST(MeshImportErrors, TruncatedBinaryFiles) {
+TEST(MeshImportErrors, TruncatedBinaryFilesNameWhatTheHeaderAnnounced) {
     TempDir dir;
     const Mesh sphere = makeSphere(8, 16);
     const std::string stl = binaryStl(sphere, glm::vec3(0.0f));
@@ -184,7 +184,7 @@ TEST(MeshImportErrors, TruncatedBinaryFiles) {
     expectMeshError(dir / "cut.om", omBytes.substr(0, omBytes.size() / 2), "truncated");
 }
 
-TEST(MeshImportErrors, TruncatedTextFiles) {
+TEST(MeshImportErrors, TruncatedTextFilesAreRefused) {
     TempDir dir;
     const OMesh om = toOpenMesh(makeSphere(8, 16));
     for (const char* name : {"whole.off", "whole.ply", "whole.stl"}) {

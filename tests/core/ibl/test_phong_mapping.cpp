@@ -297,3 +297,20 @@ TEST(ChainLevel, ExponentForChainLevelInvertsChainLevelForExponent) {
     }
     EXPECT_TRUE(std::isnan(exponentForChainLevel(std::numeric_limits<double>::quiet_NaN(), 128)));
 }
+
+// The grazing option's per-fragment level (regularScheduleLevel) against the schedule it continues:
+// at each regular level k (faces M >= 16, n_k = M²/32) the line reads k − ½·log2(1 + 32/M²), the
+// +1 of n(λ) = 3·128²·4^−λ − 1; and one λ step is one level at every base.
+TEST(ChainLevel, RegularScheduleLevelContinuesTheScheduleInLambda) {
+    for (int base : {16, 96, 128, 200, 512, 2048}) {
+        for (int k = 0; k < lastReadLevel(base); ++k) {
+            const int face = std::max(base >> k, 1);
+            if (face < 16) break;
+            const double n = levelExponent(base, k);
+            if (std::isinf(n)) continue;  // level 0 is the mirror, not on the line
+            const double expected = k - 0.5 * std::log2(1.0 + 32.0 / (double(face) * face));
+            EXPECT_NEAR(regularScheduleLevel(exponentToLambda(n), base), expected, 1e-9) << "base " << base << " level " << k;
+        }
+        EXPECT_NEAR(regularScheduleLevel(3.25, base) - regularScheduleLevel(2.25, base), 1.0, 1e-12);
+    }
+}

@@ -2,6 +2,7 @@
 // material's uniforms set and its lookups bound as the lookup plan says (lookup_plan.h).
 #include "renderer_impl.h"
 
+#include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/lobes.h"
 
@@ -194,10 +195,9 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     const int locLayered = program.uniformLocation("uLayered");
     const LayeredUniforms layeredUniforms(program);
     const MapUniforms mapUniforms(program);
-    // Level of λ in the regular part of the schedule, for the grazing option's per-fragment λ:
-    // log2(N / √(32 n(λ))) = λ + log2(N/128) − ½·log2(96) (phong.h).
+    // The grazing option's per-fragment λ reads level λ + uLevelOffset (phong.h, regularScheduleLevel).
     gl->glUniform1f(program.uniformLocation("uLevelOffset"),
-                    static_cast<float>(std::log2(std::max(environmentFaceSize, 1) / 128.0) - 0.5 * std::log2(96.0)));
+                    static_cast<float>(regularScheduleLevel(0.0, environmentFaceSize)));
     gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
     const bool irradianceReady = uploadedIrradiance != nullptr;
 

@@ -51,6 +51,12 @@ int lastReadLevel(int baseSize);
 // so the blend is as wide as the lobe on average (not the same shape: 10–58 % off it at half levels,
 // mipgloss bench; the lobe stack removes that). 0 for the mirror, lastReadLevel for n <= 1.
 double chainLevelForExponent(double exponent, int baseSize);
+// The level whose faces hold lobe n(λ) at σ ≈ 3.6 texels if the schedule's regular part (faces
+// M with n = M²/32) went on without end: log2(N / √(32 (n(λ) + 1))) = λ + log2(N/128) − ½·log2(96).
+// A straight line in λ, so a shader can evaluate it per fragment (the grazing option's per-fragment
+// λ, shading_plan.glsl): the renderer passes regularScheduleLevel(0, N) as the offset and the shader
+// adds λ and clamps to the read levels. At level k's own lobe it reads k − ½·log2(1 + 32/M²).
+double regularScheduleLevel(double lambda, int baseSize);
 // Its inverse: the lobe the renderer means when it reads the chain at `lod` (∞ at 0, 1 at
 // lastReadLevel and beyond). Λ(n) = (n+1)/(n+2) is inverted as n = (2Λ − 1)/(1 − Λ).
 double exponentForChainLevel(double lod, int baseSize);

@@ -1,5 +1,5 @@
 // How the GPU reads the environment for one object, decided here without OpenGL so it is tested
-// headless; the renderer (ui/render/src/renderer.cpp) only binds what planLookup returns. And the
+// headless; the renderer (ui/render/src/object_pass.cpp) only binds what planLookup returns. And the
 // GLSL names of the values the shaders take from C++ (the lookup, the tone map), written once:
 // shaderDefines() is put after each shader's #version line.
 #pragma once

@@ -2,7 +2,7 @@
 // turned by an angle about the vertical axis through the camera's target. GL-free; the window's
 // turntable and `mipgloss render --spin/--turntable` share it.
 //
-// Signs (the renderer's conventions: camera.h, ui/render/src/renderer.cpp). The renderer looks up
+// Signs (the renderer's conventions: camera.h, ui/render/src/renderer_impl.h environmentRotation). The renderer looks up
 // world direction d in the environment at E(φ)·d with E(φ) = Ry(−φ), φ the display's
 // environmentRotationDegrees, so a larger φ turns the environment's picture by +φ about +Y. Turning
 // every object by R = Ry(θ) about the target (Transform::rotationDegrees.y = θ turns an object the
