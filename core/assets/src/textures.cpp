@@ -45,8 +45,8 @@ std::vector<std::shared_ptr<const EncodedImage>> encodedImagesOf(const std::vect
                                                        std::to_string(images.size()) + ")").what();
                 else if (images[static_cast<std::size_t>(image)].bytes.empty())
                     problems[i] = AssetError(file, "image " + std::to_string(image) + " has no data").what();
-                else
-                    encoded[i] = std::make_shared<const EncodedImage>(images[static_cast<std::size_t>(image)]);
+                else  // refs are one per key, so each image is taken once: moved, not copied
+                    encoded[i] = std::make_shared<const EncodedImage>(std::move(images[static_cast<std::size_t>(image)]));
             }
         } catch (const FileError& e) {
             for (const std::size_t i : refs) problems[i] = e.what();
