@@ -15,7 +15,8 @@ namespace {
 const QString kShaderDir = QStringLiteral(":/mipgloss/shaders/");
 
 // `file`'s text with its #include lines (at a line's start) resolved; files already in `included`
-// become nothing.
+// become nothing. An included file's text starts at "#line 1" and the line after it is numbered as
+// in the including file, so the compiler's line numbers are those of the file each line is in.
 bool expandIncludes(const QString& file, std::set<QString>& included, QByteArray& text, std::string* error) {
     QFile source(kShaderDir + file);
     if (!source.open(QIODevice::ReadOnly)) {
@@ -23,30 +24,27 @@ bool expandIncludes(const QString& file, std::set<QString>& included, QByteArray
         return false;
     }
     included.insert(file);
-    text = source.readAll();
     static constexpr char kInclude[] = "#include \"";
-    for (qsizetype at = text.indexOf(kInclude); at >= 0; at = text.indexOf(kInclude, at)) {
-        if (at > 0 && text[at - 1] != '\n') {  // only a line's start: comments may name an include
-            ++at;
+    const QList<QByteArray> lines = source.readAll().split('\n');
+    text.clear();
+    for (qsizetype i = 0; i < lines.size(); ++i) {
+        const QByteArray& line = lines[i];
+        if (i > 0) text += '\n';
+        if (!line.startsWith(kInclude)) {  // only a line's start: comments may name an include
+            text += line;
             continue;
         }
-        const qsizetype nameStart = at + static_cast<qsizetype>(sizeof(kInclude) - 1);
-        const qsizetype nameEnd = text.indexOf('"', nameStart);
-        const qsizetype lineEnd = text.indexOf('\n', at);
-        if (nameEnd < 0 || lineEnd < nameEnd) {
+        const qsizetype nameStart = static_cast<qsizetype>(sizeof(kInclude) - 1);
+        const qsizetype nameEnd = line.indexOf('"', nameStart);
+        if (nameEnd < 0) {
             if (error) *error = "shader " + file.toStdString() + ": malformed #include";
             return false;
         }
-        const QString name = QString::fromUtf8(text.mid(nameStart, nameEnd - nameStart));
+        const QString name = QString::fromUtf8(line.mid(nameStart, nameEnd - nameStart));
+        if (included.count(name)) continue;
         QByteArray inserted;
-        if (!included.count(name)) {
-            if (!expandIncludes(name, included, inserted, error)) return false;
-            // #line after it, so the compiler's line numbers stay those of the including file.
-            const int lineAfter = static_cast<int>(text.left(at).count('\n')) + 2;
-            inserted += "#line " + QByteArray::number(lineAfter) + "\n";
-        }
-        text.replace(at, lineEnd + 1 - at, inserted);
-        at += inserted.size();
+        if (!expandIncludes(name, included, inserted, error)) return false;
+        text += "#line 1\n" + inserted + "\n#line " + QByteArray::number(i + 2);  // i + 2: the next line, 1-based
     }
     return true;
 }
