@@ -1,0 +1,85 @@
+// How the renderer reads a GGX layer from the one environment (docs/material-truth.md): K
+// lookups per layer and fragment, each the exact Phong lobe (the lobe stack) at a light direction
+// drawn from GGX's distribution of visible normals, as wide as that direction's share of the
+// lobe (filtered importance sampling, Křivánek & Colbert 2008), and the layer's albedo from a
+// table so a uniform environment returns exactly the BRDF's. The C++ half of layered.glsl: the
+// sample pattern, the lobe each lookup reads (for the stack entries a scene needs) and the table.
+//
+// In the frame N = z, v = (sin θ, 0, cos θ), sample k of K is the visible normal h_k of
+// Heitz 2018 ("Sampling the GGX distribution of visible normals") at (u1, u2) = ((k + ½)/K,
+// radical inverse of k), its light l_k = reflect(−v, h_k), with
+//     pdf(l) = G1(v)·D(h) / (4 N·v),      weight_k = G2(v, l) / G1(v)  (= f·cos/pdf for F = 1),
+// and the lookup's lobe n_k from its share Ω_k = 1/(K·pdf(l_k)) of the sphere: a normalized Phong
+// lobe covers 2π/(n + 1) (phong.h), so n_k = 2π·K·pdf(l_k)/kSampleSpread − 1. Fresnel splits the
+// sum as the split sum does: F = F0·(1 − (1 − v·h)⁵) + (1 − v·h)⁵, so the layer is
+//     F0 ⊙ A(μ, r)·Σ a_k L_k / Σ a_k  +  B(μ, r)·Σ b_k L_k / Σ b_k,
+//     a_k = weight_k·(1 − (1 − v·h_k)⁵),  b_k = weight_k·(1 − v·h_k)⁵,
+// with A and B the exact single-scattering albedos of the BRDF (GgxAlbedoTable): each layer's
+// lookups set the shape, the table its energy.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <span>
+#include <vector>
+
+namespace mipgloss {
+
+// The lookups per GGX layer and fragment the renderer makes by default (the bench measures the
+// others: `mipgloss bench truth`).
+inline constexpr int kGgxLookups = 8;
+// How much wider than its share of the sphere each lookup's lobe is (see above): lobes overlap
+// their neighbours, so K of them sum to a smooth lobe. Chosen on the `city` map only.
+inline constexpr double kSampleSpread = 2.0;
+
+// Sample k of `count`: (u1, u2) = ((k + ½)/count, radical inverse base 2 of k).
+glm::dvec2 ggxSequence(int k, int count);
+
+struct GgxLookup {
+    glm::dvec3 light{0.0, 0.0, 1.0};  // unit, in the frame N = z (zero weight below the horizon)
+    double weight = 0.0;              // G2/G1
+    double pdf = 0.0;                 // of the light direction (per steradian)
+    double fresnelEdge = 0.0;         // (1 − v·h)⁵
+};
+// Sample `u` of the visible normals at α for the view `view` (unit, frame N = z, view.z > 0).
+GgxLookup ggxLookup(double alpha, const glm::dvec3& view, const glm::dvec2& u);
+// The lobe a lookup reads: 2π·count·pdf/kSampleSpread − 1, at least 0; ∞ for α = 0.
+double lookupExponent(double pdf, int count, double spread = kSampleSpread);
+// The sharpest and widest lobe any fragment's lookups read at α (N·v over its range).
+struct ExponentRange {
+    double sharpest = 0.0, widest = 0.0;
+};
+ExponentRange lookupExponentRange(double alpha, int count, double spread = kSampleSpread);
+
+// The single-scattering albedos of the glTF specular lobe (F·D·V·cos over the hemisphere) split
+// by F0, and the diffuse lobe's Fresnel loss, on a grid of roughness × N·v (N·v columns as
+// SplitSumTable's, crowded toward grazing), read bilinearly:
+//     A(μ, r) = ∫ (1 − (1 − v·h)⁵) D V cos dω,   B(μ, r) = ∫ (1 − v·h)⁵ D V cos dω,
+//     Bd(μ)   = (1/π) ∫ (1 − v·h)⁵ cos dω        (the glTF diffuse is (1 − F0)(1 − Bd) of Lambert's
+//                                                 in a uniform environment; no roughness in it).
+// Built once per process (VNDF quadrature of 64² stratified samples a node, about 0.1 s).
+class GgxAlbedoTable {
+public:
+    static constexpr int kRoughnessSteps = 33;
+    static constexpr int kCosSteps = 65;
+    static const GgxAlbedoTable& shared();
+    explicit GgxAlbedoTable(int samples);
+
+    struct Albedo {
+        double a = 0.0, b = 0.0, diffuseEdge = 0.0;
+        double specular(double f0) const { return f0 * a + b; }
+    };
+    Albedo at(double roughness, double cosView) const;
+    // The nodes as (A, B, Bd) triples, N·v column fastest: an RGB texture with s from
+    // SplitSumTable::columnOfCosView and t = roughness.
+    std::span<const float> nodes() const { return nodes_; }
+
+private:
+    std::vector<float> nodes_;
+};
+
+// The same integrals by VNDF quadrature on a samples × samples grid (what the table is built from).
+GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int samples);
+
+}  // namespace mipgloss

@@ -1,0 +1,51 @@
+// The truth for a material (docs/material-truth.md): the glTF 2.0 BRDF (gltf_brdf.h) of a layered
+// material integrated over the environment as the program decodes it,
+//     L(v) = ∫ f(v, ω)·L_env(ω)·(N·ω)⁺ dω,
+// by RadianceTree's adapted midpoint rule, independent of the renderer and of its model. Every
+// figure about a layered material's picture is measured against it (`mipgloss bench truth`,
+// tests/ui/render/test_layered_picture.cpp). Optional energy compensation (Fdez-Agüera 2019) is a
+// switch whose truth is the compensated integral; the default is the specification's
+// single-scattering BRDF. Also the exact Karis split sum on the same texels: the baseline every
+// real-time renderer uses.
+#pragma once
+
+#include "mipgloss/ibl/cubemap.h"
+#include "mipgloss/ibl/gltf_brdf.h"
+#include "mipgloss/ibl/radiance_tree.h"
+#include "mipgloss/scene/scene.h"
+
+#include <glm/vec3.hpp>
+
+namespace mipgloss {
+
+// The glTF BRDF a layered material means: F0 = mix(layers.specular, base, metallic),
+// c_diff = base·(1 − metallic), α = roughness², the coat's α = coatRoughness², its F0 0.04.
+GltfBrdf gltfBrdfOf(const Layers& layers);
+
+struct MaterialPixel {
+    glm::dvec3 diffuse{0.0}, specular{0.0}, coat{0.0};
+    glm::dvec3 total() const { return diffuse + specular + coat; }
+};
+
+// Multiple scattering (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time
+// Image-based Lighting", JCGT 8(1)): the specular scaled by 1 + F0·(1 − E)/E, E the lobe's
+// single-scattering albedo at F0 = 1, so a white metal keeps all its energy. Off: the spec.
+enum class Scattering { Single, Compensated };
+
+// What the compensation multiplies the specular by at N·v (1 for Single).
+glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cosView, Scattering scattering);
+
+// The truth at one pixel: unit normal n, unit view v (toward the eye, above the surface).
+// Both in the environment's frame (the baked faces').
+MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layers, const glm::dvec3& n,
+                            const glm::dvec3& v, Scattering scattering = Scattering::Single,
+                            const RadianceTree::Accuracy& accuracy = {});
+
+// The exact Karis split sum (Karis 2013; Filament, three.js and the glTF Sample Viewer compute its
+// approximation): the GGX lobe prefiltered with N = v = R (weighted by N·ω), times the exact
+// albedo F0·A + B at N·v; the diffuse E(N)/π·c_diff·(1 − F0·A − B); a coat the same way, layered
+// by the glTF coat's Fresnel. On the same texels, by the same tree.
+MaterialPixel karisSplitSum(const RadianceTree& environment, const Layers& layers, const glm::dvec3& n,
+                            const glm::dvec3& v, const RadianceTree::Accuracy& accuracy = {});
+
+}  // namespace mipgloss
