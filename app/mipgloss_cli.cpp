@@ -9,6 +9,9 @@
 #include "bench_chain.h"
 #include "bench_import.h"
 #include "bench_stack.h"
+#ifdef MIPGLOSS_WITH_UI
+#include "bench_truth.h"
+#endif
 #include "cli_args.h"
 #include "cli_report.h"
 
@@ -172,6 +175,10 @@ int main(int argc, char** argv) {
             return app::runImportBench(Args(argc, argv, 3));
         if (cmd == "bench" && argc > 2 && std::string(argv[2]) == "stack")
             return app::runStackBench(Args(argc, argv, 3));
+#ifdef MIPGLOSS_WITH_UI
+        if (cmd == "bench" && argc > 2 && std::string(argv[2]) == "truth")
+            return app::runTruthBench(Args(argc, argv, 3));
+#endif
         if (cmd == "bench") {
             const app::BenchOptions options = app::parseBenchOptions(Args(argc, argv, 2));
             if (options.help) return std::cout << kUsage, 0;

@@ -5,7 +5,10 @@
 // direction. The same shading plan as object.frag (shading_plan.glsl): plan, classify, write. A
 // layered material adds, per layer, the direction it read, its lobe and the weight object.frag
 // multiplies that lobe by (layered.glsl), so the picture at an exact pixel is
-// Σ weight ⊙ lobe(direction); the single-lobe fields then describe its specular layer.
+// Σ weight ⊙ lobe(direction); the single-lobe fields then describe its specular layer. A GGX layer
+// (every layered material's specular and coat) reads K lookups: its weight is the layer's albedo,
+// its direction R, and its pixels are never marked exact (the truth they are measured against is
+// the glTF BRDF's integral, material_truth.h).
 #include "shading_plan.glsl"
 
 layout(location = 0) out vec4 aovDirection;  // xyz: unit direction, w: exponent
@@ -41,6 +44,13 @@ bool lobeRead(bool useStack, float n, vec3 d, vec3 dx, vec3 dy, samplerCube chai
 // mirror: not exact.
 bool classifyLayer(samplerCube chain, LayerRead r, out float shown) {
     shown = r.exponent;
+    if (r.kind == READ_GGX) {
+        // K lookups (object.frag, readGgx): no one lobe, so never exact; the exponent reported is
+        // the Phong lobe with GGX's peak, n = 2/α² − 2 (Walter et al. 2007), kept above 0 (0 means
+        // no object here).
+        shown = max(2.0 / max(r.alpha * r.alpha, 1e-12) - 2.0, 1e-3);
+        return false;
+    }
     if (r.kind == READ_IRRADIANCE) return baseOnly(uIrradiance, r.direction);
     if (r.grazingMirror) return false;
     return lobeRead(r.useStack, r.exponent, r.direction, r.dx, r.dy, chain, shown);
@@ -59,7 +69,7 @@ void main() {
     aovExact = vec4(exact ? 1.0 : 0.0, 0.0, 0.0, 1.0);
     aovDiffuseDirection = diffuse ? vec4(p.diffuse.direction, diffuseShown) : vec4(0.0);
     aovDiffuseWeight = vec4(p.occlusion * p.wDiffuse, p.cosView);
-    aovSpecularWeight = p.layered ? vec4(p.occlusion * p.wSpecular, 0.0) : vec4(0.0);
+    aovSpecularWeight = p.layered ? vec4(p.occlusion * (p.wSpecular + p.wSpecularEdge), 0.0) : vec4(0.0);
     aovCoatDirection = coat ? vec4(p.coat.direction, coatShown) : vec4(0.0);
-    aovCoatWeight = coat ? vec4(p.occlusion * p.wCoat, 0.0) : vec4(0.0);
+    aovCoatWeight = coat ? vec4(p.occlusion * (p.wCoat + p.wCoatEdge), 0.0) : vec4(0.0);
 }

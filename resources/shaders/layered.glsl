@@ -1,43 +1,97 @@
-// The layered material's weights (core/scene/layered.h, layerWeights), from the split-sum table
-// (core/ibl/specular.h, SplitSumTable) uploaded as uSplitSum. Included by shading_plan.glsl.
-uniform sampler2D uSplitSum;  // TEXTURE_UNIT_SPLIT_SUM, RG = (A, B) at the table's nodes
-uniform vec3 uF0;             // mix(specular, baseColor, metallic)
-uniform vec3 uDiffuseColour;  // baseColor · (1 − metallic)
-uniform float uSpecularLambda;
-uniform float uCoat;          // 0: no coat
-uniform float uCoatLambda;
+// The layered material as glTF 2.0 defines it (core/ibl/gltf_brdf.h; docs/material-truth.md): its
+// GGX layers read by lookups drawn from GGX's visible normals (core/ibl/ggx_sampling.h, the C++
+// half of this file), their energy from the exact albedo table uploaded as uGgxAlbedo, and the
+// weights each layer's value is multiplied by. Included by shading_plan.glsl.
+uniform sampler2D uGgxAlbedo;  // TEXTURE_UNIT_SPLIT_SUM, RGB = (A, B, Bd) at the table's nodes
+uniform vec3 uF0;              // mix(specular, baseColor, metallic)
+uniform vec3 uDiffuseColour;   // baseColor · (1 − metallic)
+uniform float uSpecularRoughness;
+uniform float uCoat;           // 0: no coat
+uniform float uCoatRoughness;
+uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
+uniform float uSampleSpread;   // ggx_sampling.h, kSampleSpread
 
 const float HALF_PI = 1.57079632679;
+const float PI = 3.14159265359;
 
-// A and B at λ and N·v, read bilinearly between the table's nodes as SplitSumTable::at reads them:
-// s from x = 1 − √(1 − θ/(π/2)), θ = acos(N·v); t from λ / MAX_LAMBDA.
-vec2 splitSum(float lambda, float cosView) {
+// A, B and Bd at roughness r and N·v, read bilinearly between the table's nodes as
+// GgxAlbedoTable::at reads them: s from x = 1 − √(1 − θ/(π/2)), θ = acos(N·v); t from r.
+vec3 ggxAlbedo(float roughness, float cosView) {
     float theta = acos(clamp(cosView, 0.0, 1.0));
     float x = 1.0 - sqrt(max(0.0, 1.0 - theta / HALF_PI));
-    float y = clamp(lambda, 0.0, MAX_LAMBDA) / MAX_LAMBDA;
-    vec2 uv = vec2((x * float(SPLIT_SUM_COS_STEPS - 1) + 0.5) / float(SPLIT_SUM_COS_STEPS),
-                   (y * float(SPLIT_SUM_LAMBDA_STEPS - 1) + 0.5) / float(SPLIT_SUM_LAMBDA_STEPS));
-    return texture(uSplitSum, uv).rg;
+    float y = clamp(roughness, 0.0, 1.0);
+    vec2 uv = vec2((x * float(GGX_COS_STEPS - 1) + 0.5) / float(GGX_COS_STEPS),
+                   (y * float(GGX_ROUGHNESS_STEPS - 1) + 0.5) / float(GGX_ROUGHNESS_STEPS));
+    return texture(uGgxAlbedo, uv).rgb;
 }
 
-// What each layer's lobe value is multiplied by at N·v = cosView (layered.h), for a specular
-// layer of F0 `f0` at λ `specularLambda` over a base of `diffuseColour` (a texture-mapped
-// material's, per fragment).
-void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float specularLambda, out vec3 diffuse,
-                    out vec3 specular, out vec3 coat) {
-    vec2 s = splitSum(specularLambda, cosView);
-    vec3 specularAlbedo = f0 * s.x + s.y;
-    float coatAlbedo = 0.0;
-    if (uCoat > 0.0) {
-        vec2 c = splitSum(uCoatLambda, cosView);
-        coatAlbedo = uCoat * (COAT_F0 * c.x + c.y);
-    }
-    coat = vec3(coatAlbedo);
-    specular = (1.0 - coatAlbedo) * specularAlbedo;
-    diffuse = (1.0 - coatAlbedo) * (1.0 - specularAlbedo) * diffuseColour;
+// What each layer's value is multiplied by at N·v = cosView (gltf_brdf.h):
+//   coat       c·Fc(N·v)·A_c and c·Fc(N·v)·B_c, likewise     Fc = 0.04 + 0.96 (1 − N·v)⁵
+//   specular   (1 − c·Fc)·F0·A  on the lookups' A-weighted mean, (1 − c·Fc)·B on their B-weighted one
+//   diffuse    (1 − c·Fc)·c_diff·(1 − F0)(1 − Bd)           on E(N)/π
+void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float roughness, out vec3 diffuse,
+                    out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge) {
+    vec3 e = ggxAlbedo(roughness, cosView);
+    float m = 1.0 - clamp(cosView, 0.0, 1.0);
+    float coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
+    vec3 c = uCoat > 0.0 ? ggxAlbedo(uCoatRoughness, cosView) : vec3(0.0);
+    float base = 1.0 - coatWeight;
+    coat = vec3(coatWeight * c.x);
+    coatEdge = vec3(coatWeight * c.y);
+    specular = base * f0 * e.x;
+    specularEdge = vec3(base * e.y);
+    diffuse = base * diffuseColour * (vec3(1.0) - f0) * (1.0 - e.z);
 }
 
 // The same for the material's uniforms (no maps).
-void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 coat) {
-    layerWeightsOf(cosView, uF0, uDiffuseColour, uSpecularLambda, diffuse, specular, coat);
+void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 specularEdge, out vec3 coat,
+                  out vec3 coatEdge) {
+    layerWeightsOf(cosView, uF0, uDiffuseColour, uSpecularRoughness, diffuse, specular, specularEdge, coat, coatEdge);
+}
+
+// Lookup k of K at α for the view `v` in the frame N = z (ggx_sampling.h, ggxLookup: Heitz 2018's
+// visible normals at (u1, u2) = ((k + ½)/K, radical inverse of k)): the light direction, its
+// weight G2/G1 (0 below the horizon), its pdf and (1 − v·h)⁵.
+struct GgxLookup {
+    vec3 light;
+    float weight, pdf, fresnelEdge;
+};
+
+float smithMasking(float alpha, float c) {
+    float a2 = alpha * alpha;
+    return c > 0.0 ? 2.0 * c / (c + sqrt(a2 + (1.0 - a2) * c * c)) : 0.0;
+}
+
+GgxLookup ggxLookup(float alpha, vec3 v, int k, int count) {
+    float u1 = (float(k) + 0.5) / float(count);
+    float u2 = float(bitfieldReverse(uint(k))) * 2.3283064365386963e-10;
+    vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(u1), phi = 2.0 * PI * u2;
+    float p1 = r * cos(phi);
+    float s = 0.5 * (1.0 + vh.z);
+    float p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * r * sin(phi);
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    vec3 h = normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0, nh.z)));
+    float vDotH = clamp(dot(v, h), 0.0, 1.0);
+    GgxLookup g;
+    g.light = 2.0 * vDotH * h - v;
+    float m = 1.0 - vDotH;
+    g.fresnelEdge = m * m * m * m * m;
+    float a2 = alpha * alpha;
+    float g1 = smithMasking(alpha, v.z);
+    float cl = g.light.z, cv = v.z;
+    // G2/G1 = 4·V·(N·l)(N·v)/G1, V Appendix B's height-correlated visibility.
+    float visibilityDenominator = cl * sqrt(cv * cv * (1.0 - a2) + a2) + cv * sqrt(cl * cl * (1.0 - a2) + a2);
+    g.weight = cl > 0.0 && g1 > 0.0 ? 2.0 * cl * cv / (visibilityDenominator * g1) : 0.0;
+    float d = h.z * h.z * (a2 - 1.0) + 1.0;
+    g.pdf = alpha > 0.0 ? g1 * a2 / (PI * d * d) / (4.0 * cv) : intBitsToFloat(0x7f800000);
+    return g;
+}
+
+// The lobe lookup k reads: 2π·K·pdf/kSampleSpread − 1 (ggx_sampling.h, lookupExponent).
+float lookupExponent(float pdf, int count) {
+    return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / uSampleSpread - 1.0);
 }

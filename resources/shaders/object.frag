@@ -47,13 +47,47 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
     return readLobe(chain, r.useStack, r.exponent, r.direction, r.dx, r.dy);
 }
 
+// A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
+// lobe as wide as its share of the GGX lobe (widened by the footprint of R), or the chain at that
+// lobe's level; their means weighted by G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which
+// the plan's weights (the table's A and B) multiply. One lookup along R for the mirror.
+vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight) {
+    float cosView = clamp(dot(r.normal, r.view), 1e-4, 1.0);
+    vec3 t = r.view - cosView * r.normal;
+    float tl = length(t);
+    t = tl > 1e-6 ? t / tl : normalize(cross(r.normal, abs(r.normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+    vec3 b = cross(r.normal, t);
+    vec3 v = vec3(sqrt(max(0.0, 1.0 - cosView * cosView)), 0.0, cosView);
+    int count = r.alpha > 0.0 ? uGgxLookups : 1;
+    vec3 sumA = vec3(0.0), sumB = vec3(0.0);
+    float weightA = 0.0, weightB = 0.0;
+    for (int k = 0; k < count; ++k) {
+        GgxLookup g = ggxLookup(r.alpha, v, k, count);
+        if (g.weight <= 0.0) continue;
+        float n = lookupExponent(g.pdf, count);
+        LayerRead lookup = layerRead(READ_LEVEL, normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal),
+                                     r.dx, r.dy, n, r.useStack);
+        lookup.lambda = exponentLambda(n);
+        vec3 value = readLevel(lookup);
+        float a = g.weight * (1.0 - g.fresnelEdge), e = g.weight * g.fresnelEdge;
+        sumA += a * value;
+        sumB += e * value;
+        weightA += a;
+        weightB += e;
+    }
+    return weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
+}
+
 layout(location = 0) out vec4 fragColour;
 
 void main() {
     FragmentPlan p = planFragment();
-    vec3 diffuse = readLayer(uDiffuseChain, p.diffuse);
-    vec3 specular = readLayer(uEnvironment, p.specular);
-    vec3 coat = readLayer(uCoatChain, p.coat);
+    vec3 diffuse = p.wDiffuse * readLayer(uDiffuseChain, p.diffuse);
+    // Branches, not ?: (readLayer's comment).
+    vec3 specular, coat = vec3(0.0);
+    if (p.specular.kind == READ_GGX) specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge);
+    else specular = p.wSpecular * readLayer(uEnvironment, p.specular);
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge);
     if (p.cut) discard;
-    fragColour = vec4(p.occlusion * (p.wDiffuse * diffuse + p.wSpecular * specular + p.wCoat * coat) + p.emissive, 1.0);
+    fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, 1.0);
 }

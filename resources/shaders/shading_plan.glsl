@@ -1,10 +1,11 @@
 // The shading plan every object fragment goes through, whatever its material (Filament's main.fs
 // shape: plan, then its consumers): object.frag reads and sums it, aov.frag classifies and writes
-// it. A material is up to three layers (layered.h: the diffuse base, the specular layer, the
-// clear coat), each one lookup (Ashikhmin & Ghosh 2002, §4) with its direction, footprint and
-// lobe, summed with the weights of layered.glsl; a single-lobe material is its specular layer
-// alone, weighted by its tint. Texture maps (MATERIAL_MAPS, material_maps.glsl) give the shading
-// normal, the weights and, with a roughness map, each fragment its own specular lobe.
+// it. A single-lobe material is one lookup (Ashikhmin & Ghosh 2002, §4) with its direction,
+// footprint and lobe, weighted by its tint. A layered material is the glTF 2.0 BRDF (layered.h,
+// docs/material-truth.md): the diffuse base (one lookup by the normal), the specular layer and the
+// clear coat (each K lookups drawn from GGX's visible normals, layered.glsl), summed with the
+// weights of layered.glsl. Texture maps (MATERIAL_MAPS, material_maps.glsl) give the shading
+// normal, the weights and, with a roughness map, each fragment its own GGX lobe.
 in vec3 vWorldPosition;
 in vec3 vNormal;
 
@@ -42,6 +43,7 @@ const int READ_LOBE = 1;        // lobe n: the stack's, widened by the footprint
 const int READ_IRRADIANCE = 2;  // the irradiance map
 const int READ_LEVEL = 3;       // a lobe chosen per fragment: the stack's where `useStack` and it holds it,
                                 // else the chain at λ's own level, never sharper than the footprint's
+const int READ_GGX = 4;         // a GGX layer: K lookups about R (each a READ_LEVEL), layered.glsl
 
 struct LayerRead {
     int kind;
@@ -50,13 +52,17 @@ struct LayerRead {
     float lambda;            // READ_LEVEL: the λ whose chain level stands in for n
     bool useStack;
     bool grazingMirror;      // READ_LEVEL at the grazing option's λ = 0: the chain's base, not a lobe
+    vec3 normal, view;       // READ_GGX: N and v in the environment's frame
+    float alpha;             // READ_GGX: roughness²
 };
 
 struct FragmentPlan {
     bool layered;
     float cosView;  // N·v with the shading normal
     LayerRead diffuse, specular, coat;
-    vec3 wDiffuse, wSpecular, wCoat;  // what each layer's value is multiplied by
+    vec3 wDiffuse, wSpecular, wCoat;  // what each layer's value is multiplied by (a GGX layer's
+                                      // A-weighted lookups)
+    vec3 wSpecularEdge, wCoatEdge;    // a GGX layer's B-weighted lookups (layered.glsl)
     float occlusion;                  // multiplies the sum (1 without maps)
     vec3 emissive;                    // added to it (0 without maps)
     bool cut;                         // alpha below the mask's cutoff: no fragment
@@ -72,7 +78,18 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.lambda = 0.0;
     r.useStack = useStack;
     r.grazingMirror = false;
+    r.normal = vec3(0.0);
+    r.view = vec3(0.0);
+    r.alpha = 0.0;
     return r;
+}
+
+LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack) {
+    LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
+    g.normal = normal;
+    g.view = view;
+    g.alpha = roughness * roughness;
+    return g;
 }
 
 LayerRead noRead() { return layerRead(READ_NONE, vec3(0.0), vec3(0.0), vec3(0.0), 0.0, false); }
@@ -131,26 +148,25 @@ FragmentPlan planFragment() {
         p.wDiffuse = vec3(0.0);
         p.wSpecular = uTint;
         p.wCoat = vec3(0.0);
+        p.wSpecularEdge = vec3(0.0);
+        p.wCoatEdge = vec3(0.0);
         return p;
     }
 #endif
-    p.specular = layerRead(READ_LOBE, r, rdx, rdy, uExponent, uUseStack);
+    vec3 view = normalize(uEnvironmentRotation * v);
+    float roughness = uSpecularRoughness;
 #ifdef MATERIAL_MAPS
-    float specularLambda = uSpecularLambda;
-    if (uUseRoughnessMap) {
-        // The mapped roughness: each fragment its own specular lobe.
-        p.specular = layerRead(READ_LEVEL, r, rdx, rdy, roughnessExponent(s.roughness), uUseStack);
-        p.specular.lambda = exponentLambda(p.specular.exponent);
-        specularLambda = p.specular.lambda;
-    }
+    // The mapped roughness: each fragment its own GGX lobe.
+    if (uUseRoughnessMap) roughness = s.roughness;
     // The weights from the mapped base colour and metallic.
     layerWeightsOf(p.cosView, mix(vec3(uSpecular), s.baseColor, s.metallic), s.baseColor * (1.0 - s.metallic),
-                   specularLambda, p.wDiffuse, p.wSpecular, p.wCoat);
+                   roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat, p.wCoatEdge);
 #else
-    layerWeights(p.cosView, p.wDiffuse, p.wSpecular, p.wCoat);
+    layerWeights(p.cosView, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat, p.wCoatEdge);
 #endif
+    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
-    p.coat = uCoat > 0.0 ? layerRead(READ_LOBE, r, rdx, rdy, uCoatExponent, uUseCoatStack) : noRead();
+    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack) : noRead();
     return p;
 }

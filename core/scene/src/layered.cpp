@@ -1,5 +1,6 @@
 #include "mipgloss/scene/layered.h"
 
+#include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/phong.h"
 
 #include <algorithm>
@@ -39,10 +40,40 @@ LayerWeights layerWeights(const Layers& layers, double cosView, const SplitSumTa
     return w;
 }
 
+LayerWeights ggxLayerWeights(const Layers& layers, double cosView) {
+    const double mu = std::clamp(cosView, 0.0, 1.0);
+    const GgxAlbedoTable& table = GgxAlbedoTable::shared();
+    const GgxAlbedoTable::Albedo e = table.at(layers.roughness, mu);
+    const double m = 1.0 - mu, m5 = m * m * m * m * m;
+    const double coatWeight = layers.coat > 0.0f ? layers.coat * (kDielectricF0 + (1.0 - kDielectricF0) * m5) : 0.0;
+    const double base = 1.0 - coatWeight;
+    const Rgb f0 = specularF0(layers);
+    LayerWeights w;
+    w.specular = static_cast<float>(base) * (f0 * static_cast<float>(e.a) + Rgb(static_cast<float>(e.b)));
+    w.diffuse = static_cast<float>(base * (1.0 - e.diffuseEdge)) * diffuseColour(layers) * (Rgb(1.0f) - f0);
+    if (coatWeight > 0.0) {
+        const GgxAlbedoTable::Albedo c = table.at(layers.coatRoughness, mu);
+        w.coat = Rgb(static_cast<float>(coatWeight * (c.a + c.b)));
+    }
+    return w;
+}
+
 std::vector<double> lambdasOf(const Material& material) {
     if (!material.layered) return {static_cast<double>(material.lambda)};
+    // A GGX layer's lookups read lobes from its sharpest to its widest (ggx_sampling.h), from the
+    // chain until the stack holds them.
     std::vector<double> out{specularLambda(material.layers)};
-    if (hasCoat(material.layers)) out.push_back(coatLambda(material.layers));
+    auto lookups = [&](double roughness) {
+        if (!(roughness > 0.0)) return;
+        const ExponentRange range = lookupExponentRange(roughness * roughness, kGgxLookups);
+        out.push_back(exponentToLambda(range.sharpest));
+        out.push_back(exponentToLambda(range.widest));
+    };
+    lookups(material.layers.roughness);
+    if (hasCoat(material.layers)) {
+        out.push_back(coatLambda(material.layers));
+        lookups(material.layers.coatRoughness);
+    }
     if (!material.useIrradiance) out.push_back(diffuseLambda());
     return out;
 }

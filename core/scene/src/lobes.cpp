@@ -1,5 +1,7 @@
 #include "mipgloss/scene/lobes.h"
 
+#include "mipgloss/ibl/ggx_sampling.h"
+
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/layered.h"
@@ -56,39 +58,66 @@ double footprintExponent(double exponent, double dx, double dy) {
 
 namespace {
 
-// The λ the scene reads lobes at, and whether each wants every sharper entry (the grazing option).
+// The λ the scene reads single lobes at, and whether each wants every sharper entry (the grazing
+// option); the GGX layers' roughness (their lookups' entries: ggxEntries), and whether a roughness
+// map gives fragments every roughness up to it.
 struct LambdaInUse {
     double lambda;
     bool grazing;
 };
+struct GgxInUse {
+    double roughness;
+    bool mapped;
+};
 
-std::vector<LambdaInUse> lambdasInUse(const Scene& scene) {
-    std::vector<LambdaInUse> out;
+struct LobesOfScene {
+    std::vector<LambdaInUse> lambdas;
+    std::vector<GgxInUse> ggx;
+};
+
+LobesOfScene lobesOfScene(const Scene& scene) {
+    LobesOfScene out;
     if (scene.environment.builder != Builder::Phong) return out;
     auto use = [&](double lambda, bool grazing) {
-        if (isValidLambda(lambda) && lambda > 0.0) out.push_back({lambda, grazing});
+        if (isValidLambda(lambda) && lambda > 0.0) out.lambdas.push_back({lambda, grazing});
     };
     if (scene.display.showBackground) use(scene.display.backgroundLambda, false);
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh) continue;
         const Material& m = scene.materialOf(object);
-        if (!m.layered && m.mode == LookupMode::Normal && m.useIrradiance) continue;
-        const bool grazing = !m.layered && m.sharperAtGrazing && m.mode == LookupMode::Reflect;
-        // A roughness map gives each fragment a roughness in [0, factor]: like the grazing
-        // option, every lobe from the sharpest to the factor's.
-        const bool mapped = m.layered && !m.layers.maps.roughness.empty();
-        const double mappedLambda = mapped ? specularLambda(m.layers) : -1.0;
-        for (const double lambda : lambdasOf(m)) use(lambda, grazing || lambda == mappedLambda);
+        if (!m.layered) {
+            if (m.mode == LookupMode::Normal && m.useIrradiance) continue;
+            use(m.lambda, m.sharperAtGrazing && m.mode == LookupMode::Reflect);
+            continue;
+        }
+        // The diffuse base's n = 1 lobe, then the GGX layers.
+        if (!m.useIrradiance) use(diffuseLambda(), false);
+        out.ggx.push_back({m.layers.roughness, !m.layers.maps.roughness.empty()});
+        if (hasCoat(m.layers)) out.ggx.push_back({m.layers.coatRoughness, false});
     }
     return out;
 }
 
 }  // namespace
 
+std::vector<int> ggxEntries(double roughness, int lookups, int baseSize) {
+    std::vector<int> out;
+    if (!(roughness > 0.0) || lookups < 1) return out;
+    const ExponentRange range = lookupExponentRange(roughness * roughness, lookups);
+    const int first = firstEntryMadeAhead(baseSize);
+    const auto sharp = stackBlend(range.sharpest, baseSize);
+    const auto wide = stackBlend(range.widest, baseSize);
+    const int from = std::max(first, sharp ? sharp->sharper : first);
+    const int to = std::min((wide ? wide->wider : first) + kFootprintReach, kStackLast);
+    for (int j = from; j <= to; ++j) out.push_back(j);
+    return out;
+}
+
 std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
     std::set<int> entries;
     const int top = stackTop(baseSize);
-    for (const LambdaInUse& l : lambdasInUse(scene)) {
+    const LobesOfScene lobes = lobesOfScene(scene);
+    for (const LambdaInUse& l : lobes.lambdas) {
         const auto blend = stackBlend(lambdaToExponent(l.lambda), baseSize);
         if (l.grazing) {
             // λ falls to 0 at grazing: every entry from the sharpest to this λ's, but none of
@@ -102,6 +131,13 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
             // from the lobe's sharper neighbour to kFootprintReach past its wider one.
             for (int j = blend->sharper; j <= std::min(blend->wider + kFootprintReach, kStackLast); ++j) entries.insert(j);
         }
+    }
+    for (const GgxInUse& g : lobes.ggx) {
+        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize);
+        entries.insert(range.begin(), range.end());
+        // A roughness map: any roughness up to the factor, so every entry from the sharpest on.
+        if (g.mapped && !range.empty())
+            for (int j = firstEntryMadeAhead(baseSize); j <= range.back(); ++j) entries.insert(j);
     }
     return {entries.begin(), entries.end()};
 }

@@ -1,5 +1,7 @@
 #include "mipgloss/scene/lookup_plan.h"
 
+#include "mipgloss/ibl/ggx_sampling.h"
+
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/ibl/specular.h"
 #include "mipgloss/scene/layered.h"
@@ -61,8 +63,9 @@ std::string shaderDefines() {
     define("TONE_MAP_LINEAR", static_cast<int>(ToneMap::Linear));
     define("TONE_MAP_REINHARD", static_cast<int>(ToneMap::Reinhard));
     define("TONE_MAP_ACES", static_cast<int>(ToneMap::Aces));
-    define("SPLIT_SUM_LAMBDA_STEPS", SplitSumTable::kLambdaSteps);
-    define("SPLIT_SUM_COS_STEPS", SplitSumTable::kCosSteps);
+    // The GGX albedo table (ggx_sampling.h, layered.glsl) and the lookups' lobes.
+    define("GGX_ROUGHNESS_STEPS", GgxAlbedoTable::kRoughnessSteps);
+    define("GGX_COS_STEPS", GgxAlbedoTable::kCosSteps);
     auto defineFloat = [&](const char* name, double value) {
         std::ostringstream number;
         number.precision(9);
@@ -71,6 +74,7 @@ std::string shaderDefines() {
     };
     defineFloat("MAX_LAMBDA", kMaxLambda);
     defineFloat("COAT_F0", kDielectricF0);
+    defineFloat("SAMPLE_SPREAD", kSampleSpread);
     // The lobe stack (lobes.h, lobe_stack.glsl) and λ ↔ n (phong.h): n(λ) = 3·128²·4^−λ − 1.
     define("STACK_SLOTS", kStackSlots);
     define("STACK_STEPS_PER_LEVEL", kStackStepsPerLevel);

@@ -42,7 +42,7 @@ TEST(ShaderAssembly, IncludesEachFileOnceWithTheLinesOfTheFileEachLineIsIn) {
     // Each included file's functions are defined once.
     EXPECT_EQ(object.count("vec3 stackRead(vec3 d, float n) {"), 1);
     EXPECT_EQ(object.count("FragmentPlan planFragment()"), 1);
-    EXPECT_EQ(object.count("vec2 splitSum(float lambda, float cosView) {"), 1);
+    EXPECT_EQ(object.count("vec3 ggxAlbedo(float roughness, float cosView) {"), 1);
     // A line of each level: the main file after its include, an included file after its own four
     // includes, its first and its last include.
     const struct {
@@ -51,7 +51,7 @@ TEST(ShaderAssembly, IncludesEachFileOnceWithTheLinesOfTheFileEachLineIsIn) {
     } probes[] = {{"object.frag", "layout(location = 0) out vec4 fragColour;"},
                   {"shading_plan.glsl", "FragmentPlan planFragment()"},
                   {"lobe_stack.glsl", "vec3 stackRead(vec3 d, float n) {"},
-                  {"layered.glsl", "vec2 splitSum(float lambda, float cosView) {"},
+                  {"layered.glsl", "vec3 ggxAlbedo(float roughness, float cosView) {"},
                   {"cube_lod.glsl", "float cubeLevelOfDetail(vec3 r, float size) {"}};
     for (const auto& p : probes)
         EXPECT_EQ(compilerLineOf(object, p.text), fileLineOf(p.file, p.text)) << p.file << ": " << p.text.toStdString();

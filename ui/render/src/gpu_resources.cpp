@@ -2,6 +2,7 @@
 // texture maps, cube uploads, meshes and the frame's targets.
 #include "renderer_impl.h"
 
+#include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/specular.h"
 
 #include <algorithm>
@@ -33,16 +34,17 @@ GLuint Renderer::Impl::sampler(float level) {
     return s;
 }
 
-// The split-sum table (specular.h) as an RG32F texture on TextureUnit::SplitSum, made the first
-// time a layered material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
+// The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum, made the
+// first time a layered material is drawn (building the table takes about 0.1 s, which no
+// single-lobe scene pays).
 void Renderer::Impl::bindSplitSum() {
     if (splitSumTexture == 0) {
-        const SplitSumTable& table = SplitSumTable::shared();
+        const GgxAlbedoTable& table = GgxAlbedoTable::shared();
         gl->glGenTextures(1, &splitSumTexture);
         gl->glBindTexture(GL_TEXTURE_2D, splitSumTexture);
         gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, SplitSumTable::kCosSteps, SplitSumTable::kLambdaSteps, 0,
-                         GL_RG, GL_FLOAT, table.nodes().data());
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, GgxAlbedoTable::kCosSteps, GgxAlbedoTable::kRoughnessSteps, 0,
+                         GL_RGB, GL_FLOAT, table.nodes().data());
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

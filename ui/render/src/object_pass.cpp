@@ -2,6 +2,7 @@
 // material's uniforms set and its lookups bound as the lookup plan says (lookup_plan.h).
 #include "renderer_impl.h"
 
+#include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/lobes.h"
@@ -19,14 +20,14 @@ struct Renderer::Impl::LayeredUniforms {
     explicit LayeredUniforms(QOpenGLShaderProgram& p)
         : f0(p.uniformLocation("uF0")),
           diffuseColour(p.uniformLocation("uDiffuseColour")),
-          specularLambda(p.uniformLocation("uSpecularLambda")),
+          specularRoughness(p.uniformLocation("uSpecularRoughness")),
           coat(p.uniformLocation("uCoat")),
-          coatLambda(p.uniformLocation("uCoatLambda")),
+          coatRoughness(p.uniformLocation("uCoatRoughness")),
           coatExponent(p.uniformLocation("uCoatExponent")),
           useCoatStack(p.uniformLocation("uUseCoatStack")),
           useDiffuseStack(p.uniformLocation("uUseDiffuseStack")),
           diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")) {}
-    int f0, diffuseColour, specularLambda, coat, coatLambda, coatExponent, useCoatStack, useDiffuseStack,
+    int f0, diffuseColour, specularRoughness, coat, coatRoughness, coatExponent, useCoatStack, useDiffuseStack,
         diffuseIrradiance;
 };
 
@@ -137,27 +138,26 @@ bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
 }
 
 // Sets a layered material's uniforms and binds its three lookups.
-Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady) {
+Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady, int lookups) {
     bindSplitSum();
     LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
-    const bool roughnessMapped = bindMaps(mapUniforms, m.layers);
-    if (roughnessMapped && !plan.specular.mirror) {
-        // Each fragment picks its own lobe (object.frag, readLevel): the stack where
-        // it holds it, else the chain at that lobe's level, which needs the chain from level 0.
-        plan.specular.minLevel = 0.0f;
-    }
+    bindMaps(mapUniforms, m.layers);
+    // The GGX layers' lookups (object.frag, readGgx) each read their own lobe per fragment: the
+    // stack where it holds it, else the chain at that lobe's level, which needs the chain from
+    // level 0.
+    if (!plan.specular.mirror) plan.specular.minLevel = 0.0f;
+    if (!plan.coat.mirror) plan.coat.minLevel = 0.0f;
     const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-    const bool specular = plan.specular.readsLobeStack &&
-                          (roughnessMapped ? stackCurrent() : stackServes(plan.specular.exponent));
-    const bool coat = plan.hasCoat && plan.coat.readsLobeStack && stackServes(plan.coat.exponent);
+    const bool specular = plan.specular.readsLobeStack && stackCurrent();
+    const bool coat = plan.hasCoat && plan.coat.readsLobeStack && stackCurrent();
     const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
     auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
     auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
     gl->glUniform3fv(u.f0, 1, glm::value_ptr(specularF0(m.layers)));
     gl->glUniform3fv(u.diffuseColour, 1, glm::value_ptr(diffuseColour(m.layers)));
-    set1f(u.specularLambda, plan.specular.lambda);
+    set1f(u.specularRoughness, m.layers.roughness);
     set1f(u.coat, plan.hasCoat ? m.layers.coat : 0.0f);
-    set1f(u.coatLambda, plan.coat.lambda);
+    set1f(u.coatRoughness, m.layers.coatRoughness);
     set1i(lobeUniforms.useStack, specular);
     set1f(lobeUniforms.exponent, plan.specular.exponent);
     set1i(u.useCoatStack, coat);
@@ -167,10 +167,18 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     bindChain(plan.specular, unitIndex(TextureUnit::Chain));
     if (plan.hasCoat) bindChain(plan.coat, unitIndex(TextureUnit::CoatChain));
     if (!diffuseIrradiance) bindChain(plan.diffuse, unitIndex(TextureUnit::DiffuseChain));
-    auto held = [&](const ObjectLookup& layer) { return layer.mirror || stackHolds(layer.exponent); };
+    // Settled when the stack holds every entry the GGX layers' lookups read (lobes.h, ggxEntries).
+    auto heldRange = [&](double roughness) {
+        if (!stackCurrent()) return false;
+        for (int j : ggxEntries(roughness, lookups, stackBaseSize))
+            if (!stackHolds(stackExponent(j))) return false;
+        return true;
+    };
     ObjectRead read;
-    read.settled = (roughnessMapped ? specular : held(plan.specular)) && (!plan.hasCoat || held(plan.coat)) &&
-                   (diffuseIrradiance || held(plan.diffuse));
+    const bool mapped = !m.layers.maps.roughness.empty();
+    read.settled = heldRange(mapped ? 0.0 : m.layers.roughness) && (!mapped || heldRange(m.layers.roughness)) &&
+                   (!plan.hasCoat || heldRange(m.layers.coatRoughness)) &&
+                   (diffuseIrradiance || stackHolds(plan.diffuse.exponent));
     read.fromChain = !read.settled;
     return read;
 }
@@ -200,6 +208,8 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
                     static_cast<float>(regularScheduleLevel(0.0, environmentFaceSize)));
     gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
     const bool irradianceReady = uploadedIrradiance != nullptr;
+    gl->glUniform1i(program.uniformLocation("uGgxLookups"), std::max(scene.display.ggxLookups, 1));
+    gl->glUniform1f(program.uniformLocation("uSampleSpread"), static_cast<float>(kSampleSpread));
 
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
@@ -218,7 +228,7 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
         gl->glUniform1i(locLayered, m.layered ? 1 : 0);
         ObjectRead read;
         if (m.layered) {
-            read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady);
+            read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady, scene.display.ggxLookups);
         } else {
             const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
             const bool stack = plan.readsLobeStack && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));

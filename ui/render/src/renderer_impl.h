@@ -148,7 +148,7 @@ struct Renderer::Impl {
     bool bindMaps(const MapUniforms& u, const Layers& l);
     // Sets a layered material's uniforms and binds its three lookups.
     ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms,
-                           const Material& m, bool irradianceReady);
+                           const Material& m, bool irradianceReady, int lookups);
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
     void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,

@@ -14,7 +14,7 @@ enum class TextureUnit : GLuint {
     Picture = 0,       // uHdr: the resolved HDR picture the tone pass reads (tonemap.frag)
     Irradiance = 1,    // uIrradiance: E/π
     Stack = 2,         // uStack: the lobe stack's atlas
-    SplitSum = 3,      // uSplitSum: the split-sum table (specular.h)
+    SplitSum = 3,      // uGgxAlbedo: the GGX albedo table (ggx_sampling.h)
     CoatChain = 4,     // uCoatChain: the chain at the coat's level (or the mirror)
     DiffuseChain = 6,  // uDiffuseChain: the chain at the n = 1 level
     FirstMap = 8,      // the material's texture maps, kMapCount units from here (material_maps.glsl)
@@ -36,7 +36,7 @@ inline constexpr std::array<SamplerUnit, 13> kSamplerUnits{{
     {"uHdr", unitIndex(TextureUnit::Picture)},
     {"uIrradiance", unitIndex(TextureUnit::Irradiance)},
     {"uStack", unitIndex(TextureUnit::Stack)},
-    {"uSplitSum", unitIndex(TextureUnit::SplitSum)},
+    {"uGgxAlbedo", unitIndex(TextureUnit::SplitSum)},
     {"uCoatChain", unitIndex(TextureUnit::CoatChain)},
     {"uDiffuseChain", unitIndex(TextureUnit::DiffuseChain)},
     {"uBaseColorMap", mapUnit(0)},

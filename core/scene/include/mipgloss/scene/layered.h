@@ -45,6 +45,13 @@ struct LayerWeights {
 LayerWeights layerWeights(const Layers& layers, double cosView,
                           const SplitSumTable& table = SplitSumTable::shared());
 
+// The glTF material's weights at N·v (layered.glsl, layerWeightsOf; docs/material-truth.md): what
+// each layer returns in a uniform white environment, from the exact albedo table (ggx_sampling.h).
+//   coat      c·Fc·(A_c + B_c),  Fc = 0.04 + 0.96 (1 − N·v)⁵
+//   specular  (1 − c·Fc)·(F0·A + B)
+//   diffuse   (1 − c·Fc)·c_diff·(1 − F0)(1 − Bd)
+LayerWeights ggxLayerWeights(const Layers& layers, double cosView);
+
 // Every λ a material reads (its lobes in use, for stack entries and the chain's depth): the single
 // lobe's λ; a layered material's specular λ, its coat's when it has one, and the diffuse λ unless
 // it reads the irradiance map.

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "mipgloss/ibl/builders.h"
+#include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/ibl/phong.h"
 #include "mipgloss/io/import.h"
@@ -206,6 +207,9 @@ struct DisplaySettings {
     // Turns the environment about +Y when drawing (objects' reflections and the background). A
     // view of the environment, not a property of it: it never asks for a build.
     float environmentRotationDegrees = 0.0f;
+    // Lookups per GGX layer and fragment (ggx_sampling.h): what a layered material's picture costs
+    // and how close it is to the material's truth (`mipgloss bench truth` measures both).
+    int ggxLookups = kGgxLookups;
     bool operator==(const DisplaySettings&) const = default;
 };
 

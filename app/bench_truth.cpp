@@ -1,0 +1,215 @@
+// `mipgloss bench truth`: the layered material's picture against its truth (material_truth.h),
+// per pixel, and what each lookup costs (its usage: kTruthBenchUsage; docs/material-truth.md keeps
+// the tables).
+#include "bench_truth.h"
+
+#include "cli_report.h"
+#include "offscreen_session.h"
+
+#include "mipgloss/ibl/ggx_sampling.h"
+#include "mipgloss/ibl/parallel.h"
+#include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
+#include "mipgloss/scene/material_truth.h"
+#include "mipgloss/scene/scene.h"
+#include "mipgloss/ui/offscreen.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mipgloss::app {
+
+const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]... [--env-sizes 128,256] [--sizes 384,96]
+                       [--lookups 4,8,16] [--roughness 0.05,0.2,0.3,0.6,0.7,1] [--pixels P] [--frames F]
+
+bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
+  0.95, 0.64, 0.54, at each roughness), drawn by the renderer with K lookups per GGX layer, against
+  the glTF 2.0 BRDF integrated over the same decoded environment (material_truth.h) at P pixels of
+  the object (every k-th), and the exact Karis split sum on the same pixels. Per row: relative RMS
+  over the object, the worst N·v bin of width 0.2, the median pixel's relative error, for the picture
+  and for Karis, and the frame time (ms, F frames, the material alone on llvmpipe or the GPU).
+  --env FILE        an environment, repeatable (required)
+  --env-sizes LIST  base face sizes (default 128,256)
+  --sizes LIST      image sides: the sphere fills the image (default 384,96)
+  --lookups LIST    lookups per GGX layer (default 4,8,16)
+  --roughness LIST  roughness values (default 0.05,0.2,0.3,0.6,0.7,1)
+  --pixels P        truth pixels per case (default 800)
+  --frames F        timed frames per row (default 5)
+)";
+
+namespace {
+
+std::vector<double> parseNumbers(const std::string& flag, const std::string& text, double least, double most) {
+    std::vector<double> out;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !(v >= least && v <= most))
+            throw UsageError(flag + ": '" + item + "' is not a number from " + std::to_string(least) + " to " +
+                             std::to_string(most));
+        out.push_back(v);
+    }
+    if (out.empty()) throw UsageError(flag + " needs at least one value");
+    return out;
+}
+
+struct Errors {
+    double rms = 0.0, worstBin = 0.0, median = 0.0, ratio = 0.0;  // ratio: Σ shown / Σ truth (luminance)
+};
+
+// Relative RMS over the pixels, the worst N·v bin of width 0.2, the median relative error.
+Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dvec3>& truth,
+                const std::vector<double>& cosView) {
+    Errors e;
+    double num = 0.0, den = 0.0;
+    double binNum[5] = {}, binDen[5] = {};
+    std::vector<double> each;
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        const glm::dvec3 d = shown[i] - truth[i];
+        const double dd = glm::dot(d, d), tt = glm::dot(truth[i], truth[i]);
+        num += dd;
+        den += tt;
+        const int bin = std::clamp(static_cast<int>(cosView[i] / 0.2), 0, 4);
+        binNum[bin] += dd;
+        binDen[bin] += tt;
+        if (tt > 0.0) each.push_back(std::sqrt(dd / tt));
+    }
+    e.rms = den > 0.0 ? std::sqrt(num / den) : 0.0;
+    double sumShown = 0.0, sumTruth = 0.0;
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        sumShown += shown[i].x + shown[i].y + shown[i].z;
+        sumTruth += truth[i].x + truth[i].y + truth[i].z;
+    }
+    e.ratio = sumTruth > 0.0 ? sumShown / sumTruth : 0.0;
+    for (int b = 0; b < 5; ++b)
+        if (binDen[b] > 0.0) e.worstBin = std::max(e.worstBin, std::sqrt(binNum[b] / binDen[b]));
+    if (!each.empty()) {
+        std::nth_element(each.begin(), each.begin() + static_cast<std::ptrdiff_t>(each.size() / 2), each.end());
+        e.median = each[each.size() / 2];
+    }
+    return e;
+}
+
+Scene sphereScene(const Layers& layers, int lookups) {
+    static const auto sphere = std::make_shared<const Mesh>(makeSphere(128, 256));
+    Scene scene;
+    SceneObject object;
+    object.name = "sphere";
+    object.mesh = sphere;
+    Material m;
+    m.layered = true;
+    m.layers = layers;
+    scene.addObject(object, m);
+    scene.display.showBackground = false;
+    scene.display.samples = 0;
+    scene.display.ggxLookups = lookups;
+    return scene;
+}
+
+}  // namespace
+
+int runTruthBench(Args args) {
+    std::vector<std::string> envs;
+    std::vector<double> faceSizes{128, 256}, sizes{384, 96}, lookups{4, 8, 16}, roughness{0.05, 0.2, 0.3, 0.6, 0.7, 1.0};
+    int pixels = 800, frames = 5;
+    while (!args.empty()) {
+        const std::string a = args.next();
+        if (a == "--env") envs.push_back(args.value(a));
+        else if (a == "--env-sizes") faceSizes = parseNumbers(a, args.value(a), 16, 1024);
+        else if (a == "--sizes") sizes = parseNumbers(a, args.value(a), 16, 2048);
+        else if (a == "--lookups") lookups = parseNumbers(a, args.value(a), 1, 64);
+        else if (a == "--roughness") roughness = parseNumbers(a, args.value(a), 0.0, 1.0);
+        else if (a == "--pixels") pixels = static_cast<int>(parseNumbers(a, args.value(a), 10, 1e6).front());
+        else if (a == "--frames") frames = static_cast<int>(parseNumbers(a, args.value(a), 1, 1000).front());
+        else throw UsageError("bench truth: unknown option '" + a + "'");
+    }
+    if (envs.empty()) throw UsageError("bench truth needs --env FILE");
+    OffscreenSession session("mipgloss", "bench truth");
+    ui::OffscreenRenderer& renderer = session.renderer();
+    std::printf("%-14s %5s %5s %-22s %3s | %7s %7s %7s | %7s %7s %7s | %8s\n", "map", "face", "image", "material", "K",
+                "rms%", "bin%", "med%", "karis%", "kbin%", "kmed%", "ms/frame  shown/truth");
+    for (const std::string& file : envs) {
+        const std::string map = std::filesystem::path(file).stem().string();
+        for (const double faceSize : faceSizes) {
+            EnvironmentSettings settings;
+            settings.source = file;
+            settings.faceSize = static_cast<int>(faceSize);
+            const auto env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
+            const RadianceTree tree(*env->base);
+            for (const double size : sizes)
+                for (const double r : roughness)
+                    for (const bool metal : {false, true}) {
+                        Layers layers;
+                        layers.baseColor = metal ? Rgb(0.95f, 0.64f, 0.54f) : Rgb(0.8f, 0.1f, 0.1f);
+                        layers.metallic = metal ? 1.0f : 0.0f;
+                        layers.roughness = static_cast<float>(r);
+                        // The truth once per case: the pixels' N and v come from the AOV of the
+                        // first render (the same for every K).
+                        std::vector<std::size_t> sample;
+                        std::vector<glm::dvec3> truth, karis;
+                        std::vector<double> cosView;
+                        for (const double k : lookups) {
+                            const Scene scene = sphereScene(layers, static_cast<int>(k));
+                            renderer.setLobes(makeStackEntries(*env, scene));
+                            OrbitCamera camera;
+                            camera.yawDegrees = 30.0f;
+                            camera.pitchDegrees = 20.0f;
+                            camera.frame(sceneBounds(scene), 1.0f);
+                            const int side = static_cast<int>(size);
+                            renderer.render(scene, camera, env, side, side);
+                            const auto start = std::chrono::steady_clock::now();
+                            for (int f = 0; f < frames; ++f) renderer.render(scene, camera, env, side, side);
+                            const double ms = millisecondsSince(start) / frames;
+                            int w = 0, h = 0;
+                            const std::vector<glm::vec4> hdr = renderer.lastHdr(w, h);
+                            if (sample.empty()) {
+                                const ui::AovImage aov = renderer.renderAov(scene, camera, env, side, side);
+                                std::vector<std::size_t> object;
+                                for (std::size_t i = 0; i < aov.exponent.size(); ++i)
+                                    if (aov.exponent[i] != 0.0f) object.push_back(i);
+                                const std::size_t stride = std::max<std::size_t>(1, object.size() / static_cast<std::size_t>(pixels));
+                                for (std::size_t i = 0; i < object.size(); i += stride) sample.push_back(object[i]);
+                                truth.resize(sample.size());
+                                karis.resize(sample.size());
+                                cosView.resize(sample.size());
+                                parallelFor(0, static_cast<int>(sample.size()), [&](int j) {
+                                    const std::size_t i = sample[static_cast<std::size_t>(j)];
+                                    const glm::dvec3 n = glm::normalize(glm::dvec3(aov.diffuse.direction[i]));
+                                    const glm::dvec3 rr = glm::normalize(glm::dvec3(aov.direction[i]));
+                                    const glm::dvec3 v = glm::normalize(2.0 * glm::dot(n, rr) * n - rr);
+                                    truth[static_cast<std::size_t>(j)] = materialTruth(tree, layers, n, v).total();
+                                    karis[static_cast<std::size_t>(j)] = karisSplitSum(tree, layers, n, v).total();
+                                    cosView[static_cast<std::size_t>(j)] = std::clamp(glm::dot(n, v), 0.0, 1.0);
+                                });
+                            }
+                            std::vector<glm::dvec3> shown;
+                            for (std::size_t i : sample) shown.push_back(glm::dvec3(hdr[i]));
+                            const Errors e = errorsOf(shown, truth, cosView), ke = errorsOf(karis, truth, cosView);
+                            char name[64];
+                            std::snprintf(name, sizeof name, "%s r %.2f", metal ? "metal" : "dielectric", r);
+                            std::printf("%-14s %5d %5d %-22s %3d | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f\n",
+                                        map.c_str(), static_cast<int>(faceSize), side, name, static_cast<int>(k),
+                                        100 * e.rms, 100 * e.worstBin, 100 * e.median, 100 * ke.rms, 100 * ke.worstBin,
+                                        100 * ke.median, ms, e.ratio);
+                            std::fflush(stdout);
+                        }
+                    }
+        }
+    }
+    return 0;
+}
+
+}  // namespace mipgloss::app
