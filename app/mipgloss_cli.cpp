@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
         if (cmd == "--help" || cmd == "-h" || cmd == "help") {
             std::cout << kUsage << app::kImportBenchUsage << app::kStackBenchUsage;
 #ifdef MIPGLOSS_WITH_UI
-            std::cout << app::kRenderUsage << app::kLibraryUsage;
+            std::cout << app::kRenderUsage << app::kLibraryUsage << "\n" << app::kTruthBenchUsage;
 #endif
             return 0;
         }
