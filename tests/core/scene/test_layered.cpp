@@ -90,14 +90,20 @@ TEST(LayeredWeights, LambdasInUseFollowTheLayers) {
     Material m;
     m.layered = true;
     m.layers.roughness = 0.4f;
-    EXPECT_EQ(lambdasOf(m).size(), 2u);  // specular and the diffuse base
+    // Each GGX layer: its Phong stand-in's λ and its lookups' sharpest and widest (ggx_sampling.h);
+    // then the diffuse base.
+    const double roughness = m.layers.roughness;
+    const ExponentRange specular = lookupExponentRange(roughness * roughness, kGgxLookups);
+    EXPECT_EQ(lambdasOf(m), (std::vector<double>{specularLambda(m.layers), exponentToLambda(specular.sharpest),
+                                                 exponentToLambda(specular.widest), diffuseLambda()}));
     m.layers.coat = 0.5f;
-    EXPECT_EQ(lambdasOf(m).size(), 3u);
+    EXPECT_EQ(lambdasOf(m).size(), 7u);
     m.useIrradiance = true;  // the base from the irradiance map: no diffuse lobe from the chain
     const std::vector<double> lambdas = lambdasOf(m);
-    ASSERT_EQ(lambdas.size(), 2u);
+    ASSERT_EQ(lambdas.size(), 6u);
     EXPECT_NEAR(lambdas[0], specularLambda(m.layers), 0.0);
-    EXPECT_NEAR(lambdas[1], coatLambda(m.layers), 0.0);
+    EXPECT_NEAR(lambdas[3], coatLambda(m.layers), 0.0);
+    EXPECT_LT(exponentToLambda(specular.sharpest), exponentToLambda(specular.widest));
     EXPECT_NEAR(diffuseLambda(), exponentToLambda(1.0), 0.0);
 }
 
