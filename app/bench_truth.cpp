@@ -6,6 +6,7 @@
 #include "cli_report.h"
 #include "offscreen_session.h"
 
+#include "mipgloss/ibl/bright_lights.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/parallel.h"
 #include "mipgloss/scene/environment.h"
@@ -149,6 +150,18 @@ int runTruthBench(Args args) {
             settings.faceSize = static_cast<int>(faceSize);
             const auto env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
             const RadianceTree tree(*env->base);
+            {
+                double widest = 0.0, energy = 0.0, total = 0.0;
+                for (const PointLight& l : env->lights) {
+                    widest = std::max(widest, static_cast<double>(l.radius));
+                    energy += l.energy.g;
+                }
+                total = tree.totalEnergy().y;
+                std::printf("# %s at %d²: %zu bright lights (luminance over %.3g), %.1f %% of the energy, the widest "
+                            "%.4f rad\n",
+                            map.c_str(), static_cast<int>(faceSize), env->lights.size(), brightThreshold(*env->base),
+                            total > 0.0 ? 100.0 * energy / total : 0.0, widest);
+            }
             for (const double size : sizes)
                 for (const double r : roughness)
                     for (const bool metal : {false, true}) {

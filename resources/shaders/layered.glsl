@@ -10,6 +10,12 @@ uniform float uCoat;           // 0: no coat
 uniform float uCoatRoughness;
 uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
 uniform float uSampleSpread;   // ggx_sampling.h, kSampleSpread
+// The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
+// the exact BRDF, and taken out of every lookup (each lookup's lobe would have blurred them).
+uniform vec4 uLightDirection[MAX_BRIGHT_LIGHTS];  // xyz: unit direction, w: its angular radius
+uniform vec3 uLightEnergy[MAX_BRIGHT_LIGHTS];
+uniform int uLightCount;
+uniform float uLightsMinAlpha;  // the least α whose lobe shades the lights apart (object_pass.cpp)
 
 const float HALF_PI = 1.57079632679;
 const float PI = 3.14159265359;
@@ -94,4 +100,58 @@ GgxLookup ggxLookup(float alpha, vec3 v, int k, int count) {
 // The lobe lookup k reads: 2π·K·pdf/kSampleSpread − 1 (ggx_sampling.h, lookupExponent).
 float lookupExponent(float pdf, int count) {
     return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / uSampleSpread - 1.0);
+}
+
+// What the bright lights add to lookup lobe n at direction d: Σ E_j·(n + 1)/(2π)·max(0, d·l_j)^n
+// (the normalized Phong lobe, phong.h), 0 for the mirror (a delta misses a point).
+vec3 lightsThrough(vec3 d, float n) {
+    vec3 sum = vec3(0.0);
+    if (isinf(n)) return sum;
+    for (int j = 0; j < uLightCount; ++j) {
+        float c = dot(d, uLightDirection[j].xyz);
+        if (c > 0.0) sum += uLightEnergy[j] * ((n + 1.0) / (2.0 * PI) * pow(c, n));
+    }
+    return sum;
+}
+
+// The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j. A light
+// is not a point: its texels span `radius`, so its D is GGX's widened by it, α'² = α² + (radius/2)²
+// (angles of the reflected direction are twice the half vector's), which keeps D normalized.
+vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0) {
+    vec3 sum = vec3(0.0);
+    float cv = dot(normal, view);
+    if (cv <= 0.0) return sum;
+    for (int j = 0; j < uLightCount; ++j) {
+        vec3 l = uLightDirection[j].xyz;
+        float radius = uLightDirection[j].w;
+        float a2 = alpha * alpha + 0.25 * radius * radius;
+        float cl = dot(normal, l);
+        if (cl <= 0.0) continue;
+        vec3 h = normalize(l + view);
+        float ch = max(dot(normal, h), 0.0);
+        float d = ch * ch * (a2 - 1.0) + 1.0;
+        float distribution = a2 / (PI * d * d);
+        float visibility = 0.5 / (cl * sqrt(cv * cv * (1.0 - a2) + a2) + cv * sqrt(cl * cl * (1.0 - a2) + a2));
+        float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
+        vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
+        sum += fresnel * (distribution * visibility * cl) * uLightEnergy[j];
+    }
+    return sum;
+}
+
+// The lights through the glTF diffuse exactly, and through the model's (1 − F0)(1 − Bd)·E/π, whose
+// difference corrects the diffuse read: Σ (1 − F(v·h))·(N·l)/π·E_j and Σ (N·l)/π·E_j.
+void lightsDiffuse(vec3 normal, vec3 view, vec3 f0, out vec3 exact, out vec3 lambert) {
+    exact = vec3(0.0);
+    lambert = vec3(0.0);
+    for (int j = 0; j < uLightCount; ++j) {
+        vec3 l = uLightDirection[j].xyz;
+        float cl = dot(normal, l);
+        if (cl <= 0.0) continue;
+        vec3 h = normalize(l + view);
+        float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
+        vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
+        exact += (vec3(1.0) - fresnel) * (cl / PI) * uLightEnergy[j];
+        lambert += (cl / PI) * uLightEnergy[j];
+    }
 }

@@ -49,9 +49,11 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
 
 // A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
 // lobe as wide as its share of the GGX lobe (widened by the footprint of R), or the chain at that
-// lobe's level; their means weighted by G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which
-// the plan's weights (the table's A and B) multiply. One lookup along R for the mirror.
-vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight) {
+// lobe's level, less what the bright lights put in that lobe; their means weighted by
+// G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
+// multiply; plus the bright lights through the exact BRDF of F0 `f0`, times `layer` (what the coat
+// leaves, or takes). One lookup along R for the mirror.
+vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
     float cosView = clamp(dot(r.normal, r.view), 1e-4, 1.0);
     vec3 t = r.view - cosView * r.normal;
     float tl = length(t);
@@ -61,33 +63,55 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight) {
     int count = r.alpha > 0.0 ? uGgxLookups : 1;
     vec3 sumA = vec3(0.0), sumB = vec3(0.0);
     float weightA = 0.0, weightB = 0.0;
+    // The lights are points: shaded apart only where the lobe is wider than a few base texels
+    // (uLightsMinAlpha, object_pass.cpp); a sharper lobe reads them in the environment.
+    bool split = r.alpha >= uLightsMinAlpha;
     for (int k = 0; k < count; ++k) {
         GgxLookup g = ggxLookup(r.alpha, v, k, count);
         if (g.weight <= 0.0) continue;
         float n = lookupExponent(g.pdf, count);
-        LayerRead lookup = layerRead(READ_LEVEL, normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal),
-                                     r.dx, r.dy, n, r.useStack);
-        lookup.lambda = exponentLambda(n);
-        vec3 value = readLevel(lookup);
+        vec3 l = normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal);
+        bool complete;
+        float shown = footprintLimitedExponent(n, r.dx, r.dy, complete);
+        vec3 value;
         float a = g.weight * (1.0 - g.fresnelEdge), e = g.weight * g.fresnelEdge;
+        if (r.useStack && stackHolds(shown)) {
+            value = stackRead(l, shown);
+        } else {
+            float level = isinf(n) ? 0.0 : clamp(exponentLambda(n) + uLevelOffset, 0.0, uLastLevel);
+            value = textureLod(uEnvironment, l, max(level, cubeLevelOfDetail(l, float(textureSize(uEnvironment, 0).x)))).rgb;
+        }
+        // The lights in that lobe, shaded exactly below instead.
+        if (split) value -= lightsThrough(l, shown);
         sumA += a * value;
         sumB += e * value;
         weightA += a;
         weightB += e;
     }
-    return weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
+    vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
+    return split ? lookups + layer * lightsSpecular(r.normal, r.view, r.alpha, f0) : lookups;
+}
+
+// The diffuse base: its read less the bright lights' Lambert share, weighted, plus the lights
+// through glTF's diffuse exactly.
+vec3 readDiffuse(FragmentPlan p) {
+    vec3 value = readLayer(uDiffuseChain, p.diffuse);
+    if (p.specular.kind != READ_GGX) return p.wDiffuse * value;
+    vec3 exact, lambert;
+    lightsDiffuse(p.specular.normal, p.specular.view, p.f0, exact, lambert);
+    return p.wDiffuse * (value - lambert) + (1.0 - p.coatWeight) * p.diffuseColour * exact;
 }
 
 layout(location = 0) out vec4 fragColour;
 
 void main() {
     FragmentPlan p = planFragment();
-    vec3 diffuse = p.wDiffuse * readLayer(uDiffuseChain, p.diffuse);
+    vec3 diffuse = readDiffuse(p);
     // Branches, not ?: (readLayer's comment).
     vec3 specular, coat = vec3(0.0);
-    if (p.specular.kind == READ_GGX) specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge);
+    if (p.specular.kind == READ_GGX) specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, 1.0 - p.coatWeight);
     else specular = p.wSpecular * readLayer(uEnvironment, p.specular);
-    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge);
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), p.coatWeight);  // the coat lobe has no Fresnel of its own
     if (p.cut) discard;
     fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, 1.0);
 }

@@ -63,6 +63,8 @@ struct FragmentPlan {
     vec3 wDiffuse, wSpecular, wCoat;  // what each layer's value is multiplied by (a GGX layer's
                                       // A-weighted lookups)
     vec3 wSpecularEdge, wCoatEdge;    // a GGX layer's B-weighted lookups (layered.glsl)
+    vec3 f0, diffuseColour;           // the glTF material at this fragment (with maps, mapped)
+    float coatWeight;                 // c·Fc(N·v): what the coat takes from the base
     float occlusion;                  // multiplies the sum (1 without maps)
     vec3 emissive;                    // added to it (0 without maps)
     bool cut;                         // alpha below the mask's cutoff: no fragment
@@ -150,6 +152,9 @@ FragmentPlan planFragment() {
         p.wCoat = vec3(0.0);
         p.wSpecularEdge = vec3(0.0);
         p.wCoatEdge = vec3(0.0);
+        p.f0 = vec3(0.0);
+        p.diffuseColour = vec3(0.0);
+        p.coatWeight = 0.0;
         return p;
     }
 #endif
@@ -159,11 +164,16 @@ FragmentPlan planFragment() {
     // The mapped roughness: each fragment its own GGX lobe.
     if (uUseRoughnessMap) roughness = s.roughness;
     // The weights from the mapped base colour and metallic.
-    layerWeightsOf(p.cosView, mix(vec3(uSpecular), s.baseColor, s.metallic), s.baseColor * (1.0 - s.metallic),
-                   roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat, p.wCoatEdge);
+    p.f0 = mix(vec3(uSpecular), s.baseColor, s.metallic);
+    p.diffuseColour = s.baseColor * (1.0 - s.metallic);
 #else
-    layerWeights(p.cosView, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat, p.wCoatEdge);
+    p.f0 = uF0;
+    p.diffuseColour = uDiffuseColour;
 #endif
+    layerWeightsOf(p.cosView, p.f0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
+                   p.wCoatEdge);
+    float m = 1.0 - p.cosView;
+    p.coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
     p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);

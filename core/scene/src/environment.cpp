@@ -40,6 +40,7 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
     if (previous && previous->sameImport(settings)) {
         out.base = previous->base;
         out.report = previous->report;
+        out.lights = previous->lights;
         out.importSeconds = previous->importSeconds;
     } else {
         const auto start = std::chrono::steady_clock::now();
@@ -56,6 +57,7 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
         }
         out.base = std::make_shared<const CubeMap>(std::move(imported.cube));
         out.report = std::move(imported.report);
+        out.lights = brightLights(*out.base);
         out.importSeconds = secondsSince(start);
         out.settings.faceSize = out.base->size();
         // The early environment: this import alone, to draw while the chain is built.

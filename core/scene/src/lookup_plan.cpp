@@ -1,5 +1,6 @@
 #include "mipgloss/scene/lookup_plan.h"
 
+#include "mipgloss/ibl/bright_lights.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 
 #include "mipgloss/ibl/phong.h"
@@ -74,6 +75,7 @@ std::string shaderDefines() {
     };
     defineFloat("MAX_LAMBDA", kMaxLambda);
     defineFloat("COAT_F0", kDielectricF0);
+    define("MAX_BRIGHT_LIGHTS", kMaxBrightLights);
     defineFloat("SAMPLE_SPREAD", kSampleSpread);
     // The lobe stack (lobes.h, lobe_stack.glsl) and λ ↔ n (phong.h): n(λ) = 3·128²·4^−λ − 1.
     define("STACK_SLOTS", kStackSlots);

@@ -209,6 +209,25 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
     const bool irradianceReady = uploadedIrradiance != nullptr;
     gl->glUniform1i(program.uniformLocation("uGgxLookups"), std::max(scene.display.ggxLookups, 1));
+    // The environment's bright lights (bright_lights.h), in its frame, as the shaders read them.
+    {
+        std::array<glm::vec4, kMaxBrightLights> directions{};
+        std::array<glm::vec3, kMaxBrightLights> energies{};
+        int count = 0;
+        if (environment)
+            for (const PointLight& light : environment->lights) {
+                if (count == kMaxBrightLights) break;
+                directions[static_cast<std::size_t>(count)] = glm::vec4(light.direction, light.radius);
+                energies[static_cast<std::size_t>(count)] = light.energy;
+                ++count;
+            }
+        gl->glUniform4fv(program.uniformLocation("uLightDirection"), kMaxBrightLights, glm::value_ptr(directions[0]));
+        gl->glUniform3fv(program.uniformLocation("uLightEnergy"), kMaxBrightLights, glm::value_ptr(energies[0]));
+        gl->glUniform1i(program.uniformLocation("uLightCount"), count);
+        // Points stand for texels of about 2/N rad: a GGX lobe shades them apart from α = 4/N on
+        // (a lobe at least two texels wide); sharper ones read them in the environment.
+        gl->glUniform1f(program.uniformLocation("uLightsMinAlpha"), 4.0f / static_cast<float>(std::max(environmentFaceSize, 1)));
+    }
     gl->glUniform1f(program.uniformLocation("uSampleSpread"), static_cast<float>(kSampleSpread));
 
     for (const SceneObject& object : scene.objects) {

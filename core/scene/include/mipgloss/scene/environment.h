@@ -3,6 +3,7 @@
 // the UI thread, the command line and the tests call them directly.
 #pragma once
 
+#include "mipgloss/ibl/bright_lights.h"
 #include "mipgloss/ibl/builders.h"
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/io/import.h"
@@ -29,6 +30,9 @@ struct PreparedEnvironment {
     // ChainNeeds in scene.h).
     int lastFilteredLevel = -1;
     std::shared_ptr<const CubeMap> irradiance;  // null until some object needs it
+    // The base's bright texels as points of energy (bright_lights.h), made with the import: the
+    // layered materials shade them with their exact BRDF.
+    std::vector<PointLight> lights;
     // The default builder's energy pyramid of this import, for stack entries (lobes.h); null for
     // the other builders.
     std::shared_ptr<const PhongFilter> filter;

@@ -1,0 +1,73 @@
+#include "mipgloss/ibl/bright_lights.h"
+
+#include "mipgloss/ibl/colour.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace mipgloss {
+
+double brightThreshold(const CubeMap& base, double factor) {
+    const int n = base.size();
+    double sum = 0.0, omega = 0.0;
+    for (Face f : kAllFaces)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const double w = texelSolidAngle(x, y, n);
+                sum += w * luminance(base.at(f, x, y));
+                omega += w;
+            }
+    return omega > 0.0 ? factor * sum / omega : 0.0;
+}
+
+std::vector<PointLight> brightLights(const CubeMap& base, double factor, int maxLights) {
+    struct Cluster {
+        glm::dvec3 energy{0.0};
+        glm::dvec3 moment{0.0};
+        double omega = 0.0;
+    };
+    const int n = base.size();
+    const double threshold = brightThreshold(base, factor);
+    std::map<std::tuple<int, int, int>, Cluster> clusters;  // (face, x, y) at the current level
+    if (threshold > 0.0)
+        for (Face f : kAllFaces)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const Rgb c = base.at(f, x, y);
+                    const double l = luminance(c);
+                    if (!(l > threshold)) continue;
+                    const glm::dvec3 excess = glm::dvec3(c) * (1.0 - threshold / l) * texelSolidAngle(x, y, n);
+                    Cluster& k = clusters[{static_cast<int>(f), x, y}];
+                    k.energy += excess;
+                    k.omega += texelSolidAngle(x, y, n);
+                    k.moment += (0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z) *
+                                glm::dvec3(texelDirection(f, x, y, n));
+                }
+    while (static_cast<int>(clusters.size()) > std::max(maxLights, 1)) {
+        std::map<std::tuple<int, int, int>, Cluster> coarser;
+        for (const auto& [key, k] : clusters) {
+            Cluster& c = coarser[{std::get<0>(key), std::get<1>(key) / 2, std::get<2>(key) / 2}];
+            c.energy += k.energy;
+            c.moment += k.moment;
+            c.omega += k.omega;
+        }
+        if (coarser.size() == clusters.size()) break;  // one texel per face: nothing left to merge
+        clusters = std::move(coarser);
+    }
+    std::vector<PointLight> lights;
+    for (const auto& [key, k] : clusters) {
+        const double m = glm::length(k.moment);
+        if (!(m > 0.0)) continue;
+        lights.push_back({glm::vec3(k.moment / m), Rgb(k.energy), static_cast<float>(std::sqrt(k.omega / 3.14159265358979))});
+    }
+    std::sort(lights.begin(), lights.end(),
+              [](const PointLight& a, const PointLight& b) { return luminance(a.energy) > luminance(b.energy); });
+    if (static_cast<int>(lights.size()) > maxLights) lights.resize(static_cast<std::size_t>(maxLights));
+    return lights;
+}
+
+}  // namespace mipgloss
