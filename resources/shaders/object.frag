@@ -78,8 +78,11 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
         if (r.useStack && stackHolds(shown)) {
             value = stackRead(l, shown);
         } else {
-            float level = isinf(n) ? 0.0 : clamp(exponentLambda(n) + uLevelOffset, 0.0, uLastLevel);
-            value = textureLod(uEnvironment, l, max(level, cubeLevelOfDetail(l, float(textureSize(uEnvironment, 0).x)))).rgb;
+            // The chain at the level that holds the lobe the footprint shows (phong.h,
+            // regularScheduleLevel): a near-mirror lookup reads the base, not a blurred level the
+            // hardware's footprint would pick (a level's lobe is 3.6 of its texels wide).
+            float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
+            value = textureLod(uEnvironment, l, level).rgb;
         }
         // The lights in that lobe, shaded exactly below instead.
         if (split) value -= lightsThrough(l, shown);
