@@ -32,7 +32,8 @@
 namespace mipgloss::app {
 
 const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]... [--env-sizes 128,256] [--sizes 384,96]
-                       [--lookups 4,8,16] [--roughness 0.05,0.2,0.3,0.6,0.7,1] [--pixels P] [--frames F]
+                       [--lookups 4,8,16] [--lights on|off|both] [--roughness 0.05,0.2,0.3,0.6,0.7,1]
+                       [--pixels P] [--frames F]
 
 bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
   0.95, 0.64, 0.54, at each roughness), drawn by the renderer with K lookups per GGX layer, against
@@ -44,6 +45,7 @@ bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0
   --env-sizes LIST  base face sizes (default 128,256)
   --sizes LIST      image sides: the sphere fills the image (default 384,96)
   --lookups LIST    lookups per GGX layer (default 4,8,16)
+  --lights WHICH    the bright texels shaded as lights: on (default), off, or both (rows "L" on, "-" off)
   --roughness LIST  roughness values (default 0.05,0.2,0.3,0.6,0.7,1)
   --pixels P        truth pixels per case (default 800)
   --frames F        timed frames per row (default 5)
@@ -104,7 +106,7 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
     return e;
 }
 
-Scene sphereScene(const Layers& layers, int lookups) {
+Scene sphereScene(const Layers& layers, int lookups, bool lights) {
     static const auto sphere = std::make_shared<const Mesh>(makeSphere(128, 256));
     Scene scene;
     SceneObject object;
@@ -117,6 +119,7 @@ Scene sphereScene(const Layers& layers, int lookups) {
     scene.display.showBackground = false;
     scene.display.samples = 0;
     scene.display.ggxLookups = lookups;
+    scene.display.brightLights = lights;
     return scene;
 }
 
@@ -126,13 +129,20 @@ int runTruthBench(Args args) {
     std::vector<std::string> envs;
     std::vector<double> faceSizes{128, 256}, sizes{384, 96}, lookups{4, 8, 16}, roughness{0.05, 0.2, 0.3, 0.6, 0.7, 1.0};
     int pixels = 800, frames = 5;
+    std::vector<bool> lightsModes{true};
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--env") envs.push_back(args.value(a));
         else if (a == "--env-sizes") faceSizes = parseNumbers(a, args.value(a), 16, 1024);
         else if (a == "--sizes") sizes = parseNumbers(a, args.value(a), 16, 2048);
         else if (a == "--lookups") lookups = parseNumbers(a, args.value(a), 1, 64);
-        else if (a == "--roughness") roughness = parseNumbers(a, args.value(a), 0.0, 1.0);
+        else if (a == "--lights") {
+            const std::string v = args.value(a);
+            if (v == "on") lightsModes = {true};
+            else if (v == "off") lightsModes = {false};
+            else if (v == "both") lightsModes = {true, false};
+            else throw UsageError("--lights is on, off or both, got '" + v + "'");
+        } else if (a == "--roughness") roughness = parseNumbers(a, args.value(a), 0.0, 1.0);
         else if (a == "--pixels") pixels = static_cast<int>(parseNumbers(a, args.value(a), 10, 1e6).front());
         else if (a == "--frames") frames = static_cast<int>(parseNumbers(a, args.value(a), 1, 1000).front());
         else throw UsageError("bench truth: unknown option '" + a + "'");
@@ -174,8 +184,9 @@ int runTruthBench(Args args) {
                         std::vector<std::size_t> sample;
                         std::vector<glm::dvec3> truth, karis;
                         std::vector<double> cosView;
-                        for (const double k : lookups) {
-                            const Scene scene = sphereScene(layers, static_cast<int>(k));
+                        for (const double k : lookups)
+                        for (const bool lightsOn : lightsModes) {
+                            const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn);
                             renderer.setLobes(makeStackEntries(*env, scene));
                             OrbitCamera camera;
                             camera.yawDegrees = 30.0f;
@@ -212,7 +223,8 @@ int runTruthBench(Args args) {
                             for (std::size_t i : sample) shown.push_back(glm::dvec3(hdr[i]));
                             const Errors e = errorsOf(shown, truth, cosView), ke = errorsOf(karis, truth, cosView);
                             char name[64];
-                            std::snprintf(name, sizeof name, "%s r %.2f", metal ? "metal" : "dielectric", r);
+                            std::snprintf(name, sizeof name, "%s r %.2f %s", metal ? "metal" : "dielectric", r,
+                                          lightsOn ? "L" : "-");
                             std::printf("%-14s %5d %5d %-22s %3d | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f\n",
                                         map.c_str(), static_cast<int>(faceSize), side, name, static_cast<int>(k),
                                         100 * e.rms, 100 * e.worstBin, 100 * e.median, 100 * ke.rms, 100 * ke.worstBin,

@@ -10,6 +10,8 @@ uniform float uCoat;           // 0: no coat
 uniform float uCoatRoughness;
 uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
 uniform float uSampleSpread;   // ggx_sampling.h, kSampleSpread
+uniform ivec2 uSpecularEntries;  // the stack entries each layer's lookups read, first and last
+uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStack/uUseCoatStack)
 // The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
 // the exact BRDF, and taken out of every lookup (each lookup's lobe would have blurred them).
 uniform vec4 uLightDirection[MAX_BRIGHT_LIGHTS];  // xyz: unit direction, w: its angular radius
@@ -102,14 +104,19 @@ float lookupExponent(float pdf, int count) {
     return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / uSampleSpread - 1.0);
 }
 
-// What the bright lights add to lookup lobe n at direction d: Σ E_j·(n + 1)/(2π)·max(0, d·l_j)^n
-// (the normalized Phong lobe, phong.h), 0 for the mirror (a delta misses a point).
+// What the bright lights add to lookup lobe n at direction d: each light a disc of radius ρ_j, so
+// the lobe convolved with it, a normalized Phong lobe (phong.h) widened as the footprint widens one
+// (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + ρ²/4; Σ E_j·(n' + 1)/(2π)·max(0, d·l_j)^n'.
 vec3 lightsThrough(vec3 d, float n) {
     vec3 sum = vec3(0.0);
-    if (isinf(n)) return sum;
+    float u = isinf(n) ? 0.0 : 1.0 / (n + 2.0);
     for (int j = 0; j < uLightCount; ++j) {
         float c = dot(d, uLightDirection[j].xyz);
-        if (c > 0.0) sum += uLightEnergy[j] * ((n + 1.0) / (2.0 * PI) * pow(c, n));
+        float radius = uLightDirection[j].w;
+        float w = u + 0.25 * radius * radius;
+        if (c <= 0.0 || w <= 0.0) continue;
+        float widened = max(1.0 / w - 2.0, 0.0);
+        sum += uLightEnergy[j] * ((widened + 1.0) / (2.0 * PI) * pow(c, widened));
     }
     return sum;
 }

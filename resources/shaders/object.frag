@@ -7,10 +7,10 @@
 // sampler's GL_TEXTURE_MIN_LOD is the chain level standing in for the lobe (phong.h,
 // chainLevelForExponent), trilinear.
 //
-// Built twice: without and with MATERIAL_MAPS (the layered materials with texture maps, drawn by
-// a program of their own, because a shader runs every branch it holds for each fragment on a CPU
-// rasterizer (llvmpipe: masked SIMD) and the maps' reads made every other object six times slower
-// there).
+// Built three times: the single lobe; LAYERED (the glTF material); LAYERED with MATERIAL_MAPS (with
+// texture maps). Each kind of material has a program of its own, because a shader runs every
+// branch it holds for each fragment on a CPU rasterizer (llvmpipe: masked SIMD): the maps' reads
+// made every other object six times slower there, and the GGX lookups the single lobe 1.75×.
 #include "shading_plan.glsl"
 
 // Lobe n at direction d (unit; dx, dy its change to the next pixels): the stack's exact lobe
@@ -47,6 +47,7 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
     return readLobe(chain, r.useStack, r.exponent, r.direction, r.dx, r.dy);
 }
 
+#ifdef LAYERED
 // A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
 // lobe as wide as its share of the GGX lobe (widened by the footprint of R), or the chain at that
 // lobe's level, less what the bright lights put in that lobe; their means weighted by
@@ -66,17 +67,24 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
     // The lights are points: shaded apart only where the lobe is wider than a few base texels
     // (uLightsMinAlpha, object_pass.cpp); a sharper lobe reads them in the environment.
     bool split = r.alpha >= uLightsMinAlpha;
+    // The footprint widens every lookup's lobe the same way (lobes.h, footprintExponent).
+    float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
     for (int k = 0; k < count; ++k) {
         GgxLookup g = ggxLookup(r.alpha, v, k, count);
         if (g.weight <= 0.0) continue;
         float n = lookupExponent(g.pdf, count);
         vec3 l = normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal);
-        bool complete;
-        float shown = footprintLimitedExponent(n, r.dx, r.dy, complete);
+        float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + footprint;
+        float shown = u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+        // The stack's nearest entry (2^¼ apart in n: within 9 % of the lobe, which a lookup's
+        // share of the lobe does not resolve), one read; sharper than its first, the chain.
+        int j = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
         vec3 value;
         float a = g.weight * (1.0 - g.fresnelEdge), e = g.weight * g.fresnelEdge;
-        if (r.useStack && stackHolds(shown)) {
-            value = stackRead(l, shown);
+        if (r.useStack && j >= r.entries.x) {
+            j = min(j, r.entries.y);
+            shown = uStackExponent[j];
+            value = stackEntryAt(j, l);
         } else {
             // The chain at the level that holds the lobe the footprint shows (phong.h,
             // regularScheduleLevel): a near-mirror lookup reads the base, not a blurred level the
@@ -105,16 +113,22 @@ vec3 readDiffuse(FragmentPlan p) {
     return p.wDiffuse * (value - lambert) + (1.0 - p.coatWeight) * p.diffuseColour * exact;
 }
 
+#endif
+
 layout(location = 0) out vec4 fragColour;
 
 void main() {
     FragmentPlan p = planFragment();
+#ifdef LAYERED
     vec3 diffuse = readDiffuse(p);
-    // Branches, not ?: (readLayer's comment).
-    vec3 specular, coat = vec3(0.0);
-    if (p.specular.kind == READ_GGX) specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, 1.0 - p.coatWeight);
-    else specular = p.wSpecular * readLayer(uEnvironment, p.specular);
-    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), p.coatWeight);  // the coat lobe has no Fresnel of its own
+    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, 1.0 - p.coatWeight);
+    vec3 coat = vec3(0.0);
+    // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), p.coatWeight);
     if (p.cut) discard;
     fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, 1.0);
+#else
+    vec3 value = p.wSpecular * readLayer(uEnvironment, p.specular);
+    fragColour = vec4(value, 1.0);
+#endif
 }

@@ -21,7 +21,6 @@ uniform bool uSharperAtGrazing;
 uniform float uLambda;       // only for uSharperAtGrazing (the sampler then has MIN_LOD 0)
 uniform float uLevelOffset;  // chain level of λ: λ + uLevelOffset (phong.h), for per-fragment lobes
 uniform float uLastLevel;    // the chain's last read level
-uniform bool uLayered;
 uniform samplerCube uCoatChain;     // TEXTURE_UNIT_COAT_CHAIN: the chain at the coat's level (or the mirror)
 uniform samplerCube uDiffuseChain;  // TEXTURE_UNIT_DIFFUSE_CHAIN: the chain at the n = 1 level
 uniform bool uUseCoatStack;
@@ -29,7 +28,9 @@ uniform bool uUseDiffuseStack;
 uniform bool uDiffuseIrradiance;    // the base from the irradiance map
 uniform float uCoatExponent;
 
+#ifdef LAYERED
 #include "layered.glsl"
+#endif
 #ifdef MATERIAL_MAPS
 #include "material_maps.glsl"
 #endif
@@ -54,6 +55,7 @@ struct LayerRead {
     bool grazingMirror;      // READ_LEVEL at the grazing option's λ = 0: the chain's base, not a lobe
     vec3 normal, view;       // READ_GGX: N and v in the environment's frame
     float alpha;             // READ_GGX: roughness²
+    ivec2 entries;           // READ_GGX: the stack entries its lookups read (lobes.h, ggxEntries)
 };
 
 struct FragmentPlan {
@@ -83,11 +85,13 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.normal = vec3(0.0);
     r.view = vec3(0.0);
     r.alpha = 0.0;
+    r.entries = ivec2(0);
     return r;
 }
 
-LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack) {
+LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
+    g.entries = entries;
     g.normal = normal;
     g.view = view;
     g.alpha = roughness * roughness;
@@ -132,11 +136,11 @@ FragmentPlan planFragment() {
     vec3 r = normalize(uEnvironmentRotation * reflect(-v, n));
     vec3 normal = normalize(uEnvironmentRotation * n);
     vec3 rdx = dFdx(r), rdy = dFdy(r), ndx = dFdx(normal), ndy = dFdy(normal);
-#ifdef MATERIAL_MAPS
-    p.layered = true;
-#else
-    p.layered = uLayered;
-    if (!uLayered) {
+#ifndef LAYERED
+    // The single-lobe program (object_pass.cpp: each material's own program, so neither pays for
+    // the other's branches on a CPU rasterizer).
+    p.layered = false;
+    {
         bool reflectLookup = uLookup == LOOKUP_REFLECT;
         vec3 d = reflectLookup ? r : normal, ddx = reflectLookup ? rdx : ndx, ddy = reflectLookup ? rdy : ndy;
         if (uLookup == LOOKUP_IRRADIANCE)
@@ -157,7 +161,8 @@ FragmentPlan planFragment() {
         p.coatWeight = 0.0;
         return p;
     }
-#endif
+#else
+    p.layered = true;
     vec3 view = normalize(uEnvironmentRotation * v);
     float roughness = uSpecularRoughness;
 #ifdef MATERIAL_MAPS
@@ -174,9 +179,10 @@ FragmentPlan planFragment() {
                    p.wCoatEdge);
     float m = 1.0 - p.cosView;
     p.coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
-    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack);
+    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
-    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack) : noRead();
+    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries) : noRead();
     return p;
+#endif
 }

@@ -27,8 +27,10 @@ double brightThreshold(const CubeMap& base, double factor) {
 std::vector<PointLight> brightLights(const CubeMap& base, double factor, int maxLights) {
     struct Cluster {
         glm::dvec3 energy{0.0};
-        glm::dvec3 moment{0.0};
+        glm::dvec3 moment{0.0};  // Σ lum·direction of its texels' excess
+        double weight = 0.0;      // Σ lum
         double omega = 0.0;
+        int texels = 0;
     };
     const int n = base.size();
     const double threshold = brightThreshold(base, factor);
@@ -44,8 +46,10 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor, int max
                     Cluster& k = clusters[{static_cast<int>(f), x, y}];
                     k.energy += excess;
                     k.omega += texelSolidAngle(x, y, n);
-                    k.moment += (0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z) *
-                                glm::dvec3(texelDirection(f, x, y, n));
+                    ++k.texels;
+                    const double lum = 0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z;
+                    k.moment += lum * glm::dvec3(texelDirection(f, x, y, n));
+                    k.weight += lum;
                 }
     while (static_cast<int>(clusters.size()) > std::max(maxLights, 1)) {
         std::map<std::tuple<int, int, int>, Cluster> coarser;
@@ -53,7 +57,9 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor, int max
             Cluster& c = coarser[{std::get<0>(key), std::get<1>(key) / 2, std::get<2>(key) / 2}];
             c.energy += k.energy;
             c.moment += k.moment;
+            c.weight += k.weight;
             c.omega += k.omega;
+            c.texels += k.texels;
         }
         if (coarser.size() == clusters.size()) break;  // one texel per face: nothing left to merge
         clusters = std::move(coarser);
@@ -62,7 +68,12 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor, int max
     for (const auto& [key, k] : clusters) {
         const double m = glm::length(k.moment);
         if (!(m > 0.0)) continue;
-        lights.push_back({glm::vec3(k.moment / m), Rgb(k.energy), static_cast<float>(std::sqrt(k.omega / 3.14159265358979))});
+        // Its width: the spread of its texels about their mean, E[θ²] = 2(1 − |Σ w·d| / Σ w), plus
+        // a texel's own (a disc of its solid angle Ω has E[θ²] = Ω/(2π)); a uniform disc of radius
+        // ρ has E[θ²] = ρ²/2, so ρ = √(2 E[θ²]).
+        const double texel = k.omega / std::max(k.texels, 1);
+        const double spread = 2.0 * std::max(0.0, 1.0 - m / k.weight) + texel / (2.0 * 3.14159265358979);
+        lights.push_back({glm::vec3(k.moment / m), Rgb(k.energy), static_cast<float>(std::sqrt(2.0 * spread))});
     }
     std::sort(lights.begin(), lights.end(),
               [](const PointLight& a, const PointLight& b) { return luminance(a.energy) > luminance(b.energy); });

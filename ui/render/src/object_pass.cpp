@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mipgloss::ui {
 
@@ -26,9 +27,11 @@ struct Renderer::Impl::LayeredUniforms {
           coatExponent(p.uniformLocation("uCoatExponent")),
           useCoatStack(p.uniformLocation("uUseCoatStack")),
           useDiffuseStack(p.uniformLocation("uUseDiffuseStack")),
-          diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")) {}
+          diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")),
+          specularEntries(p.uniformLocation("uSpecularEntries")),
+          coatEntries(p.uniformLocation("uCoatEntries")) {}
     int f0, diffuseColour, specularRoughness, coat, coatRoughness, coatExponent, useCoatStack, useDiffuseStack,
-        diffuseIrradiance;
+        diffuseIrradiance, specularEntries, coatEntries;
 };
 
 // The uniforms a single-lobe material shares with a layered one's specular layer.
@@ -148,8 +151,26 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     if (!plan.specular.mirror) plan.specular.minLevel = 0.0f;
     if (!plan.coat.mirror) plan.coat.minLevel = 0.0f;
     const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-    const bool specular = plan.specular.readsLobeStack && stackCurrent();
-    const bool coat = plan.hasCoat && plan.coat.readsLobeStack && stackCurrent();
+    // The entries each GGX layer's lookups read (ggxEntries; a roughness map: from the first made
+    // ahead on), and whether the stack holds them all (else the lookups read the chain).
+    const bool mapped = !m.layers.maps.roughness.empty();
+    auto entryRange = [&](double roughness, bool anyRoughness) {
+        std::vector<int> range = ggxEntries(roughness, lookups, std::max(stackBaseSize, 1));
+        if (range.empty()) return glm::ivec2(kStackSlots, kStackLast);  // none: every lookup reads the chain
+        return glm::ivec2(anyRoughness ? firstEntryMadeAhead(std::max(stackBaseSize, 1)) : range.front(), range.back());
+    };
+    auto holds = [&](glm::ivec2 range) {
+        if (!stackCurrent() || range.x > range.y) return false;
+        for (int j = range.x; j <= range.y; ++j)
+            if (!stackHolds(stackExponent(j))) return false;
+        return true;
+    };
+    const glm::ivec2 specularEntries = entryRange(m.layers.roughness, mapped);
+    const glm::ivec2 coatEntries = entryRange(m.layers.coatRoughness, false);
+    const bool specular = plan.specular.readsLobeStack && holds(specularEntries);
+    const bool coat = plan.hasCoat && plan.coat.readsLobeStack && holds(coatEntries);
+    gl->glUniform2i(u.specularEntries, specularEntries.x, specularEntries.y);
+    gl->glUniform2i(u.coatEntries, coatEntries.x, coatEntries.y);
     const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
     auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
     auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
@@ -167,25 +188,16 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     bindChain(plan.specular, unitIndex(TextureUnit::Chain));
     if (plan.hasCoat) bindChain(plan.coat, unitIndex(TextureUnit::CoatChain));
     if (!diffuseIrradiance) bindChain(plan.diffuse, unitIndex(TextureUnit::DiffuseChain));
-    // Settled when the stack holds every entry the GGX layers' lookups read (lobes.h, ggxEntries).
-    auto heldRange = [&](double roughness) {
-        if (!stackCurrent()) return false;
-        for (int j : ggxEntries(roughness, lookups, stackBaseSize))
-            if (!stackHolds(stackExponent(j))) return false;
-        return true;
-    };
+    // Settled when the stack holds every entry the GGX layers' lookups read.
     ObjectRead read;
-    const bool mapped = !m.layers.maps.roughness.empty();
-    read.settled = heldRange(mapped ? 0.0 : m.layers.roughness) && (!mapped || heldRange(m.layers.roughness)) &&
-                   (!plan.hasCoat || heldRange(m.layers.coatRoughness)) &&
-                   (diffuseIrradiance || stackHolds(plan.diffuse.exponent));
+    read.settled = specular && (!plan.hasCoat || coat) && (diffuseIrradiance || stackHolds(plan.diffuse.exponent));
     read.fromChain = !read.settled;
     return read;
 }
 
 // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
 // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
-void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum, bool aov, bool mapped) {
+void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum, bool aov, ObjectProgram kind) {
     program.bind();
     gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
                            glm::value_ptr(viewProjection));
@@ -200,7 +212,6 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     const int locLambda = program.uniformLocation("uLambda");
     const LobeUniforms lobeUniforms{program.uniformLocation("uUseStack"), program.uniformLocation("uExponent")};
     bindStack(program);
-    const int locLayered = program.uniformLocation("uLayered");
     const LayeredUniforms layeredUniforms(program);
     const MapUniforms mapUniforms(program);
     // The grazing option's per-fragment λ reads level λ + uLevelOffset (phong.h, regularScheduleLevel).
@@ -223,16 +234,18 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
             }
         gl->glUniform4fv(program.uniformLocation("uLightDirection"), kMaxBrightLights, glm::value_ptr(directions[0]));
         gl->glUniform3fv(program.uniformLocation("uLightEnergy"), kMaxBrightLights, glm::value_ptr(energies[0]));
-        gl->glUniform1i(program.uniformLocation("uLightCount"), count);
+        gl->glUniform1i(program.uniformLocation("uLightCount"), scene.display.brightLights ? count : 0);
         // Points stand for texels of about 2/N rad: a GGX lobe shades them apart from α = 4/N on
         // (a lobe at least two texels wide); sharper ones read them in the environment.
-        gl->glUniform1f(program.uniformLocation("uLightsMinAlpha"), 4.0f / static_cast<float>(std::max(environmentFaceSize, 1)));
+        gl->glUniform1f(program.uniformLocation("uLightsMinAlpha"), scene.display.brightLights
+                                                                        ? 4.0f / static_cast<float>(std::max(environmentFaceSize, 1))
+                                                                        : std::numeric_limits<float>::infinity());
     }
     gl->glUniform1f(program.uniformLocation("uSampleSpread"), static_cast<float>(kSampleSpread));
 
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
-        if (drawsMaps(scene.materialOf(object)) != mapped) continue;  // the other program's
+        if (programOf(scene.materialOf(object)) != kind) continue;  // another program's
         if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
             if (!aov) ++counters.objectsCulled;
             continue;
@@ -244,7 +257,6 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
             glm::mat3(model) / std::max(std::abs(object.transform.scale), 1e-30f);
         gl->glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(model));
         gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
-        gl->glUniform1i(locLayered, m.layered ? 1 : 0);
         ObjectRead read;
         if (m.layered) {
             read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady, scene.display.ggxLookups);
@@ -274,13 +286,18 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     }
 }
 
-// The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
+// The objects, in their programs: the single lobes, the glTF materials, those with maps
+// (drawObjects's `kind`, programOf).
 void Renderer::Impl::drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum) {
-    drawObjects(aov ? *aovProgram : *objectProgram, scene, eye, viewProjection, envRotation, frustum, aov, false);
-    if (std::any_of(scene.objects.begin(), scene.objects.end(),
-                    [&](const SceneObject& o) { return o.visible && o.mesh && drawsMaps(scene.materialOf(o)); }))
-        drawObjects(aov ? *aovMapsProgram : *objectMapsProgram, scene, eye, viewProjection, envRotation, frustum,
-                    aov, true);
+    const std::pair<ObjectProgram, QOpenGLShaderProgram*> programs[] = {
+        {ObjectProgram::Single, aov ? aovProgram.get() : objectProgram.get()},
+        {ObjectProgram::Layered, aov ? aovLayeredProgram.get() : objectLayeredProgram.get()},
+        {ObjectProgram::LayeredMaps, aov ? aovMapsProgram.get() : objectMapsProgram.get()}};
+    for (const auto& [kind, program] : programs)
+        if (std::any_of(scene.objects.begin(), scene.objects.end(), [&, k = kind](const SceneObject& o) {
+                return o.visible && o.mesh && programOf(scene.materialOf(o)) == k;
+            }))
+            drawObjects(*program, scene, eye, viewProjection, envRotation, frustum, aov, kind);
 }
 
 }  // namespace mipgloss::ui

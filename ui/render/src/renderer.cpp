@@ -51,10 +51,14 @@ bool Renderer::initialize(std::string* error) {
     impl_->toneProgram = buildProgram(fullscreenVert, QStringLiteral("tonemap.frag"), error);
     impl_->aovProgram = buildProgram(objectVert, QStringLiteral("aov.frag"), error);
     impl_->outlineProgram = buildProgram(QStringLiteral("outline.vert"), QStringLiteral("outline.frag"), error);
-    impl_->objectMapsProgram = buildProgram(objectVert, QStringLiteral("object.frag"), error, "#define MATERIAL_MAPS\n");
-    impl_->aovMapsProgram = buildProgram(objectVert, QStringLiteral("aov.frag"), error, "#define MATERIAL_MAPS\n");
+    impl_->objectLayeredProgram = buildProgram(objectVert, QStringLiteral("object.frag"), error, "#define LAYERED\n");
+    impl_->aovLayeredProgram = buildProgram(objectVert, QStringLiteral("aov.frag"), error, "#define LAYERED\n");
+    impl_->objectMapsProgram =
+        buildProgram(objectVert, QStringLiteral("object.frag"), error, "#define LAYERED\n#define MATERIAL_MAPS\n");
+    impl_->aovMapsProgram = buildProgram(objectVert, QStringLiteral("aov.frag"), error, "#define LAYERED\n#define MATERIAL_MAPS\n");
     if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram ||
-        !impl_->outlineProgram || !impl_->objectMapsProgram || !impl_->aovMapsProgram) {
+        !impl_->outlineProgram || !impl_->objectMapsProgram || !impl_->aovMapsProgram || !impl_->objectLayeredProgram ||
+        !impl_->aovLayeredProgram) {
         impl_->gl = nullptr;
         return false;
     }
@@ -106,6 +110,8 @@ void Renderer::destroy() {
     d.aovProgram.reset();
     d.objectMapsProgram.reset();
     d.aovMapsProgram.reset();
+    d.objectLayeredProgram.reset();
+    d.aovLayeredProgram.reset();
     d.outlineProgram.reset();
     d.environment.reset();
     d.gl = nullptr;

@@ -42,6 +42,7 @@ struct Renderer::Impl {
     // object.frag and aov.frag built with MATERIAL_MAPS: the layered materials with texture maps
     // (MaterialMaps::inUse), drawn after the others (object.frag says why apart).
     std::unique_ptr<QOpenGLShaderProgram> objectMapsProgram, aovMapsProgram;
+    std::unique_ptr<QOpenGLShaderProgram> objectLayeredProgram, aovLayeredProgram;
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
@@ -151,10 +152,16 @@ struct Renderer::Impl {
                            const Material& m, bool irradianceReady, int lookups);
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
+    static bool drawsMaps(const Material& m) { return m.layered && m.layers.maps.inUse(); }
+    // Which program draws a material: the single lobe, the glTF material, or it with maps.
+    enum class ObjectProgram { Single, Layered, LayeredMaps };
+    static ObjectProgram programOf(const Material& m) {
+        return !m.layered ? ObjectProgram::Single : drawsMaps(m) ? ObjectProgram::LayeredMaps : ObjectProgram::Layered;
+    }
     void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
                      const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum,
-                     bool aov, bool mapped);
-    static bool drawsMaps(const Material& m) { return m.layered && m.layers.maps.inUse(); }
+                     bool aov, ObjectProgram kind);
+
     // The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
     void drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection,
                         const glm::mat3& envRotation, const Frustum& frustum);

@@ -24,7 +24,7 @@ inline constexpr int kMaxBrightLights = 32;
 struct PointLight {
     glm::vec3 direction{0.0f, 0.0f, 1.0f};  // unit, in the cube's frame
     Rgb energy{0.0f};                       // Σ Ω·(L − clamped L) over its texels
-    float radius = 0.0f;                    // √(Ω/π) of its texels together: how wide it is (radians)
+    float radius = 0.0f;                    // the disc it stands for: √(2 E[θ²]) about its direction (radians)
 };
 
 // The lights, brightest first; none for a cube with no texel over the threshold.

@@ -210,6 +210,9 @@ struct DisplaySettings {
     // Lookups per GGX layer and fragment (ggx_sampling.h): what a layered material's picture costs
     // and how close it is to the material's truth (`mipgloss bench truth` measures both).
     int ggxLookups = kGgxLookups;
+    // The environment's bright texels shaded as lights with the exact BRDF (bright_lights.h); off:
+    // the lookups read them with the rest (for `mipgloss bench truth` to show what they buy).
+    bool brightLights = true;
     bool operator==(const DisplaySettings&) const = default;
 };
 
