@@ -130,9 +130,11 @@ TEST(AssetCommand, AovExponentsVaryOverAnObjectWithARoughnessMap) {
     std::printf("[ AssetCommand ] roughness map: %d object pixels, exponents %.2f to %.1f, %d marked exact\n", object,
                 lowest, highest, exact);
     ASSERT_GT(object, 160 * 160 / 4);
-    // n(0.16) ≈ 564 and n(0.9) ≈ 0.19; the pixels nearest the poles show ~0.25 and ~0.85: n ≈ 94 and 0.3.
+    // The AOV reports each GGX lobe as n = 2/α² − 2, α = r² (aov.frag): the pixels nearest the poles
+    // show r ≈ 0.25 and ≈ 0.85, n ≈ 510 and 1.8. A layered pixel is K lookups, never one lobe: none
+    // is marked exact (docs/material-truth.md).
     EXPECT_GT(highest / lowest, 100.0f);
-    EXPECT_GT(exact, object / 2);
+    EXPECT_EQ(exact, 0);
 }
 
 TEST(AssetCommand, ImportGltfLandsTheMaterialsInALibraryByName) {
