@@ -9,7 +9,6 @@ uniform float uSpecularRoughness;
 uniform float uCoat;           // 0: no coat
 uniform float uCoatRoughness;
 uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
-uniform float uSampleSpread;   // ggx_sampling.h, kSampleSpread
 uniform ivec2 uSpecularEntries;  // the stack entries each layer's lookups read, first and last
 uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStack/uUseCoatStack)
 // The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
@@ -33,15 +32,16 @@ vec3 ggxAlbedo(float roughness, float cosView) {
     return texture(uGgxAlbedo, uv).rgb;
 }
 
-// What each layer's value is multiplied by at N·v = cosView (gltf_brdf.h):
+// What each layer's value is multiplied by at N·v = cosView (gltf_brdf.h), and c·Fc, what the coat
+// takes from the base:
 //   coat       c·Fc(N·v)·A_c and c·Fc(N·v)·B_c, likewise     Fc = 0.04 + 0.96 (1 − N·v)⁵
 //   specular   (1 − c·Fc)·F0·A  on the lookups' A-weighted mean, (1 − c·Fc)·B on their B-weighted one
 //   diffuse    (1 − c·Fc)·c_diff·(1 − F0)(1 − Bd)           on E(N)/π
 void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float roughness, out vec3 diffuse,
-                    out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge) {
+                    out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge, out float coatWeight) {
     vec3 e = ggxAlbedo(roughness, cosView);
     float m = 1.0 - clamp(cosView, 0.0, 1.0);
-    float coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
+    coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
     vec3 c = uCoat > 0.0 ? ggxAlbedo(uCoatRoughness, cosView) : vec3(0.0);
     float base = 1.0 - coatWeight;
     coat = vec3(coatWeight * c.x);
@@ -49,12 +49,6 @@ void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float roughness,
     specular = base * f0 * e.x;
     specularEdge = vec3(base * e.y);
     diffuse = base * diffuseColour * (vec3(1.0) - f0) * (1.0 - e.z);
-}
-
-// The same for the material's uniforms (no maps).
-void layerWeights(float cosView, out vec3 diffuse, out vec3 specular, out vec3 specularEdge, out vec3 coat,
-                  out vec3 coatEdge) {
-    layerWeightsOf(cosView, uF0, uDiffuseColour, uSpecularRoughness, diffuse, specular, specularEdge, coat, coatEdge);
 }
 
 // Lookup k of K at α for the view `v` in the frame N = z (ggx_sampling.h, ggxLookup: Heitz 2018's
@@ -101,7 +95,7 @@ GgxLookup ggxLookup(float alpha, vec3 v, int k, int count) {
 
 // The lobe lookup k reads: 2π·K·pdf/kSampleSpread − 1 (ggx_sampling.h, lookupExponent).
 float lookupExponent(float pdf, int count) {
-    return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / uSampleSpread - 1.0);
+    return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / SAMPLE_SPREAD - 1.0);
 }
 
 // What the bright lights add to lookup lobe n at direction d: each light a disc of radius ρ_j, so

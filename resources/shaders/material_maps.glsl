@@ -60,8 +60,3 @@ MaterialSample sampleMaterial(vec3 n) {
     s.cut = uAlphaMode == ALPHA_MASK && s.alpha < uAlphaCutoff;
     return s;
 }
-
-// n(r) = kRoughnessFit·(r^−4 − 1) (specular.h, roughnessToExponent); r = 0 is the mirror.
-float roughnessExponent(float r) {
-    return r > 0.0 ? ROUGHNESS_FIT * (1.0 / (r * r * r * r) - 1.0) : intBitsToFloat(0x7f800000);
-}

@@ -107,7 +107,6 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
 // through glTF's diffuse exactly.
 vec3 readDiffuse(FragmentPlan p) {
     vec3 value = readLayer(uDiffuseChain, p.diffuse);
-    if (p.specular.kind != READ_GGX) return p.wDiffuse * value;
     vec3 exact, lambert;
     lightsDiffuse(p.specular.normal, p.specular.view, p.f0, exact, lambert);
     return p.wDiffuse * (value - lambert) + (1.0 - p.coatWeight) * p.diffuseColour * exact;

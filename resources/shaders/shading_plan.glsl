@@ -26,7 +26,6 @@ uniform samplerCube uDiffuseChain;  // TEXTURE_UNIT_DIFFUSE_CHAIN: the chain at 
 uniform bool uUseCoatStack;
 uniform bool uUseDiffuseStack;
 uniform bool uDiffuseIrradiance;    // the base from the irradiance map
-uniform float uCoatExponent;
 
 #ifdef LAYERED
 #include "layered.glsl"
@@ -44,7 +43,7 @@ const int READ_LOBE = 1;        // lobe n: the stack's, widened by the footprint
 const int READ_IRRADIANCE = 2;  // the irradiance map
 const int READ_LEVEL = 3;       // a lobe chosen per fragment: the stack's where `useStack` and it holds it,
                                 // else the chain at λ's own level, never sharper than the footprint's
-const int READ_GGX = 4;         // a GGX layer: K lookups about R (each a READ_LEVEL), layered.glsl
+const int READ_GGX = 4;         // a GGX layer: K lookups about R (object.frag, readGgx; layered.glsl)
 
 struct LayerRead {
     int kind;
@@ -176,9 +175,7 @@ FragmentPlan planFragment() {
     p.diffuseColour = uDiffuseColour;
 #endif
     layerWeightsOf(p.cosView, p.f0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
-                   p.wCoatEdge);
-    float m = 1.0 - p.cosView;
-    p.coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
+                   p.wCoatEdge, p.coatWeight);
     p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);

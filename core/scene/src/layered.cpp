@@ -1,6 +1,7 @@
 #include "mipgloss/scene/layered.h"
 
 #include "mipgloss/ibl/ggx_sampling.h"
+#include "mipgloss/scene/material_truth.h"
 #include "mipgloss/ibl/phong.h"
 
 #include <algorithm>
@@ -44,8 +45,7 @@ LayerWeights ggxLayerWeights(const Layers& layers, double cosView) {
     const double mu = std::clamp(cosView, 0.0, 1.0);
     const GgxAlbedoTable& table = GgxAlbedoTable::shared();
     const GgxAlbedoTable::Albedo e = table.at(layers.roughness, mu);
-    const double m = 1.0 - mu, m5 = m * m * m * m * m;
-    const double coatWeight = layers.coat > 0.0f ? layers.coat * (kDielectricF0 + (1.0 - kDielectricF0) * m5) : 0.0;
+    const double coatWeight = coatFresnelWeight(gltfBrdfOf(layers), mu);
     const double base = 1.0 - coatWeight;
     const Rgb f0 = specularF0(layers);
     LayerWeights w;

@@ -100,14 +100,14 @@ LobesOfScene lobesOfScene(const Scene& scene) {
 
 }  // namespace
 
-std::vector<int> ggxEntries(double roughness, int lookups, int baseSize) {
+std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool mapped) {
     std::vector<int> out;
     if (!(roughness > 0.0) || lookups < 1) return out;
     const ExponentRange range = lookupExponentRange(roughness * roughness, lookups);
     const int first = firstEntryMadeAhead(baseSize);
     const auto sharp = stackBlend(range.sharpest, baseSize);
     const auto wide = stackBlend(range.widest, baseSize);
-    const int from = std::max(first, sharp ? sharp->sharper : first);
+    const int from = mapped ? first : std::max(first, sharp ? sharp->sharper : first);
     const int to = std::min((wide ? wide->wider : first) + kFootprintReach, kStackLast);
     for (int j = from; j <= to; ++j) out.push_back(j);
     return out;
@@ -133,11 +133,8 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
         }
     }
     for (const GgxInUse& g : lobes.ggx) {
-        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize);
+        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize, g.mapped);
         entries.insert(range.begin(), range.end());
-        // A roughness map: any roughness up to the factor, so every entry from the sharpest on.
-        if (g.mapped && !range.empty())
-            for (int j = firstEntryMadeAhead(baseSize); j <= range.back(); ++j) entries.insert(j);
     }
     return {entries.begin(), entries.end()};
 }

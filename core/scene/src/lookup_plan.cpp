@@ -83,8 +83,7 @@ std::string shaderDefines() {
     define("STACK_LAST", kStackLast);
     define("STACK_FOOTPRINT_REACH", kFootprintReach);
     defineFloat("LAMBDA_EXPONENT_SCALE", 3.0 * kLambdaReferenceSize * kLambdaReferenceSize);
-    // Texture maps (material_maps.glsl): roughness -> n (specular.h) and the alpha modes (scene.h).
-    defineFloat("ROUGHNESS_FIT", kRoughnessFit);
+    // Texture maps (material_maps.glsl): the alpha modes (scene.h).
     define("ALPHA_OPAQUE", static_cast<int>(AlphaMode::Opaque));
     define("ALPHA_MASK", static_cast<int>(AlphaMode::Mask));
     define("ALPHA_BLEND", static_cast<int>(AlphaMode::Blend));

@@ -1,6 +1,7 @@
 #include "mipgloss/scene/material_truth.h"
 
 #include "mipgloss/ibl/ggx_sampling.h"
+#include "mipgloss/scene/layered.h"
 
 #include <glm/geometric.hpp>
 
@@ -33,10 +34,8 @@ glm::dvec3 toD(const Rgb& c) { return glm::dvec3(c); }
 
 GltfBrdf gltfBrdfOf(const Layers& layers) {
     GltfBrdf brdf;
-    const double metallic = layers.metallic;
-    const glm::dvec3 base = toD(layers.baseColor);
-    brdf.f0 = glm::dvec3(layers.specular) * (1.0 - metallic) + base * metallic;
-    brdf.diffuse = base * (1.0 - metallic);
+    brdf.f0 = toD(specularF0(layers));
+    brdf.diffuse = toD(diffuseColour(layers));
     brdf.alpha = static_cast<double>(layers.roughness) * layers.roughness;
     brdf.clearcoat = layers.coat;
     brdf.coatAlpha = static_cast<double>(layers.coatRoughness) * layers.coatRoughness;

@@ -24,13 +24,12 @@ struct Renderer::Impl::LayeredUniforms {
           specularRoughness(p.uniformLocation("uSpecularRoughness")),
           coat(p.uniformLocation("uCoat")),
           coatRoughness(p.uniformLocation("uCoatRoughness")),
-          coatExponent(p.uniformLocation("uCoatExponent")),
           useCoatStack(p.uniformLocation("uUseCoatStack")),
           useDiffuseStack(p.uniformLocation("uUseDiffuseStack")),
           diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")),
           specularEntries(p.uniformLocation("uSpecularEntries")),
           coatEntries(p.uniformLocation("uCoatEntries")) {}
-    int f0, diffuseColour, specularRoughness, coat, coatRoughness, coatExponent, useCoatStack, useDiffuseStack,
+    int f0, diffuseColour, specularRoughness, coat, coatRoughness, useCoatStack, useDiffuseStack,
         diffuseIrradiance, specularEntries, coatEntries;
 };
 
@@ -151,13 +150,12 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     if (!plan.specular.mirror) plan.specular.minLevel = 0.0f;
     if (!plan.coat.mirror) plan.coat.minLevel = 0.0f;
     const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-    // The entries each GGX layer's lookups read (ggxEntries; a roughness map: from the first made
-    // ahead on), and whether the stack holds them all (else the lookups read the chain).
-    const bool mapped = !m.layers.maps.roughness.empty();
-    auto entryRange = [&](double roughness, bool anyRoughness) {
-        std::vector<int> range = ggxEntries(roughness, lookups, std::max(stackBaseSize, 1));
+    // The entries each GGX layer's lookups read (ggxEntries), and whether the stack holds them all
+    // (else the lookups read the chain).
+    auto entryRange = [&](double roughness, bool mapped) {
+        const std::vector<int> range = ggxEntries(roughness, lookups, std::max(stackBaseSize, 1), mapped);
         if (range.empty()) return glm::ivec2(kStackSlots, kStackLast);  // none: every lookup reads the chain
-        return glm::ivec2(anyRoughness ? firstEntryMadeAhead(std::max(stackBaseSize, 1)) : range.front(), range.back());
+        return glm::ivec2(range.front(), range.back());
     };
     auto holds = [&](glm::ivec2 range) {
         if (!stackCurrent() || range.x > range.y) return false;
@@ -165,8 +163,8 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
             if (!stackHolds(stackExponent(j))) return false;
         return true;
     };
-    const glm::ivec2 specularEntries = entryRange(m.layers.roughness, mapped);
-    const glm::ivec2 coatEntries = entryRange(m.layers.coatRoughness, false);
+    const glm::ivec2 specularEntries = entryRange(m.layers.roughness, !m.layers.maps.roughness.empty());
+    const glm::ivec2 coatEntries = plan.hasCoat ? entryRange(m.layers.coatRoughness, false) : glm::ivec2(kStackSlots, kStackLast);
     const bool specular = plan.specular.readsLobeStack && holds(specularEntries);
     const bool coat = plan.hasCoat && plan.coat.readsLobeStack && holds(coatEntries);
     gl->glUniform2i(u.specularEntries, specularEntries.x, specularEntries.y);
@@ -182,7 +180,6 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     set1i(lobeUniforms.useStack, specular);
     set1f(lobeUniforms.exponent, plan.specular.exponent);
     set1i(u.useCoatStack, coat);
-    set1f(u.coatExponent, plan.coat.exponent);
     set1i(u.useDiffuseStack, diffuse);
     set1i(u.diffuseIrradiance, diffuseIrradiance);
     bindChain(plan.specular, unitIndex(TextureUnit::Chain));
@@ -241,7 +238,6 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
                                                                         ? 4.0f / static_cast<float>(std::max(environmentFaceSize, 1))
                                                                         : std::numeric_limits<float>::infinity());
     }
-    gl->glUniform1f(program.uniformLocation("uSampleSpread"), static_cast<float>(kSampleSpread));
 
     for (const SceneObject& object : scene.objects) {
         if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;

@@ -85,8 +85,9 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize);
 // The entries a GGX layer of `roughness` reads with `lookups` lookups per fragment (ggx_sampling.h,
 // lookupExponentRange): from its sharpest lookup's sharper neighbour (never before
 // firstEntryMadeAhead: sharper lookups read the chain) to kFootprintReach past its widest one's
-// wider neighbour, ascending. None for the mirror (roughness 0).
-std::vector<int> ggxEntries(double roughness, int lookups, int baseSize);
+// wider neighbour, ascending. With a roughness map (`mapped`), any roughness up to it: every entry
+// from firstEntryMadeAhead on. None for the mirror (roughness 0).
+std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool mapped = false);
 // The first entry of a face up to kGrazingLargestFace: where what is made ahead begins.
 int firstEntryMadeAhead(int baseSize);
 // The entries within `reach` steps of those in use (`inUse`, ascending: lobesInUse), not in use and
