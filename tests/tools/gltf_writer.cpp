@@ -32,7 +32,9 @@ TestImage makeImage(int width, int height, int channels,
 void writePng(const TestImage& image, const std::filesystem::path& file) {
     auto out = OIIO::ImageOutput::create(file.string());
     if (!out) throw std::runtime_error("no PNG writer: " + OIIO::geterror());
-    const OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+    // The texels are straight alpha, as glTF's images are (OpenImageIO would divide them by alpha).
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     if (!out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) ||
         !out->close())
         throw std::runtime_error("cannot write " + file.string() + ": " + out->geterror());

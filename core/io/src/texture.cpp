@@ -59,6 +59,15 @@ TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSi
     return image;
 }
 
+// glTF's textures are straight (unassociated) alpha: OpenImageIO multiplies colour by alpha on
+// decode unless told not to, which would darken an opaque material's colour wherever its alpha is
+// below one and give masked leaves dark fringes (docs/assets.md).
+OIIO::ImageSpec straightAlpha() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
 }  // namespace
 
 void downsizeTexture(TextureImage& image, int maxSize) {
@@ -90,7 +99,8 @@ void downsizeTexture(TextureImage& image, int maxSize) {
 TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
-    auto in = OIIO::ImageInput::open(file.string());
+    const OIIO::ImageSpec config = straightAlpha();
+    auto in = OIIO::ImageInput::open(file.string(), &config);
     if (!in) {
         std::string err = OIIO::geterror();
         throw TextureError(file, "not a readable image" + (err.empty() ? std::string() : ": " + err));
@@ -103,7 +113,12 @@ TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const
     if (bytes.empty()) throw TextureError(nameForMessages, "the image is empty (0 bytes)");
     OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
     const std::string fakeName = "embedded" + extensionForMime(mimeType, nameForMessages);
-    auto in = OIIO::ImageInput::open(fakeName, nullptr, &reader);
+    // With a configuration, OpenImageIO 2.4's readers take the proxy from it (the argument alone is
+    // dropped when they read the configuration).
+    OIIO::ImageSpec config = straightAlpha();
+    OIIO::Filesystem::IOProxy* proxy = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    auto in = OIIO::ImageInput::open(fakeName, &config, &reader);
     if (!in) {
         std::string err = OIIO::geterror();
         throw TextureError(nameForMessages, "not a readable image" + (err.empty() ? std::string() : ": " + err));

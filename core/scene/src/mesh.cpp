@@ -1,5 +1,7 @@
 #include "mipgloss/scene/mesh.h"
 
+#include "mikktspace.h"
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -9,6 +11,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace mipgloss {
 
@@ -128,49 +132,118 @@ Mesh makeUvSphere(int rings, int segments) {
     return mesh;
 }
 
+namespace {
+
+// MikkTSpace's view of a mesh (third_party/mikktspace: the reference implementation, unmodified):
+// the corners' attributes in, one tangent per corner out.
+struct TangentJob {
+    const Mesh* mesh = nullptr;
+    std::vector<glm::vec4> corners;  // per triangle corner: xyz, w the bitangent's sign
+
+    static TangentJob& of(const SMikkTSpaceContext* context) { return *static_cast<TangentJob*>(context->m_pUserData); }
+    std::uint32_t vertex(int face, int corner) const {
+        return mesh->indices[static_cast<std::size_t>(face) * 3 + static_cast<std::size_t>(corner)];
+    }
+};
+
+int mikkFaceCount(const SMikkTSpaceContext* context) {
+    return static_cast<int>(TangentJob::of(context).mesh->indices.size() / 3);
+}
+int mikkCornerCount(const SMikkTSpaceContext*, int) { return 3; }
+void mikkPosition(const SMikkTSpaceContext* context, float out[], int face, int corner) {
+    const TangentJob& job = TangentJob::of(context);
+    const glm::vec3& p = job.mesh->positions[job.vertex(face, corner)];
+    out[0] = p.x, out[1] = p.y, out[2] = p.z;
+}
+void mikkNormal(const SMikkTSpaceContext* context, float out[], int face, int corner) {
+    const TangentJob& job = TangentJob::of(context);
+    const glm::vec3& n = job.mesh->normals[job.vertex(face, corner)];
+    out[0] = n.x, out[1] = n.y, out[2] = n.z;
+}
+// glTF's v runs down the image; MikkTSpace's bitangent follows v, and glTF's (the normal map's +Y)
+// points up the image. So v is given as 1 − v, as Blender gives its v-up UVs to the same code (the
+// tangents glTF exporters write and bakers bake against): the tangent is unchanged, the sign is
+// glTF's.
+void mikkTexCoord(const SMikkTSpaceContext* context, float out[], int face, int corner) {
+    const TangentJob& job = TangentJob::of(context);
+    const glm::vec2& uv = job.mesh->uvs[job.vertex(face, corner)];
+    out[0] = uv.x, out[1] = 1.0f - uv.y;
+}
+void mikkSetTangent(const SMikkTSpaceContext* context, const float tangent[], float sign, int face, int corner) {
+    TangentJob& job = TangentJob::of(context);
+    job.corners[static_cast<std::size_t>(face) * 3 + static_cast<std::size_t>(corner)] =
+        glm::vec4(tangent[0], tangent[1], tangent[2], sign < 0.0f ? -1.0f : 1.0f);
+}
+
+// Any unit tangent perpendicular to `normal` (a vertex no triangle uses).
+glm::vec4 anyTangent(const glm::vec3& normal) {
+    const glm::vec3 t = glm::cross(std::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0), normal);
+    return glm::vec4(glm::normalize(t), 1.0f);
+}
+
+}  // namespace
+
+std::uint32_t duplicateVertex(Mesh& mesh, std::uint32_t vertex) {
+    const auto copy = [vertex](auto& values) {
+        if (!values.empty()) values.push_back(values[vertex]);
+    };
+    copy(mesh.positions);
+    copy(mesh.normals);
+    copy(mesh.uvs);
+    copy(mesh.tangents);
+    return static_cast<std::uint32_t>(mesh.positions.size() - 1);
+}
+
 void computeTangents(Mesh& mesh) {
     const std::size_t n = mesh.positions.size();
-    if (mesh.uvs.size() != n || mesh.normals.size() != n) {
-        mesh.tangents.clear();
-        return;
+    mesh.tangents.clear();
+    if (mesh.uvs.size() != n || mesh.normals.size() != n) return;
+    TangentJob job;
+    job.mesh = &mesh;
+    job.corners.assign(mesh.indices.size(), glm::vec4(0.0f));
+    SMikkTSpaceInterface callbacks{};
+    callbacks.m_getNumFaces = mikkFaceCount;
+    callbacks.m_getNumVerticesOfFace = mikkCornerCount;
+    callbacks.m_getPosition = mikkPosition;
+    callbacks.m_getNormal = mikkNormal;
+    callbacks.m_getTexCoord = mikkTexCoord;
+    callbacks.m_setTSpaceBasic = mikkSetTangent;
+    SMikkTSpaceContext context{&callbacks, &job};
+    if (!mesh.indices.empty() && !genTangSpaceDefault(&context)) {
+        // MikkTSpace could not allocate its working memory: every vertex some tangent, so the
+        // mesh still draws (its normal map is then not the baker's).
+        for (std::size_t c = 0; c < job.corners.size(); ++c) job.corners[c] = anyTangent(mesh.normals[mesh.indices[c]]);
     }
-    // Per triangle: T, B with dp1 = du1·T + dv1·B, dp2 = du2·T + dv2·B (Lengyel), each corner's
-    // share weighted by its angle, as MikkTSpace weights them.
-    std::vector<glm::dvec3> tangent(n, glm::dvec3(0.0)), bitangent(n, glm::dvec3(0.0));
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const std::uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
-        const glm::dvec3 p0(mesh.positions[v[0]]), p1(mesh.positions[v[1]]), p2(mesh.positions[v[2]]);
-        const glm::dvec2 t0(mesh.uvs[v[0]]), t1(mesh.uvs[v[1]]), t2(mesh.uvs[v[2]]);
-        const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
-        const glm::dvec2 d1 = t1 - t0, d2 = t2 - t0;
-        const double det = d1.x * d2.y - d2.x * d1.y;
-        if (!(std::abs(det) > 1e-20) || !std::isfinite(det)) continue;
-        const glm::dvec3 ft = (e1 * d2.y - e2 * d1.y) / det;
-        const glm::dvec3 fb = (e2 * d1.x - e1 * d2.x) / det;
-        const glm::dvec3 ps[3] = {p0, p1, p2};
-        for (int c = 0; c < 3; ++c) {
-            const glm::dvec3 a = ps[(c + 1) % 3] - ps[c], b = ps[(c + 2) % 3] - ps[c];
-            const double la = glm::length(a), lb = glm::length(b);
-            if (!(la > 0.0 && lb > 0.0)) continue;
-            const double angle = std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
-            tangent[v[c]] += angle * ft;
-            bitangent[v[c]] += angle * fb;
+
+    // One tangent per vertex: a vertex whose corners MikkTSpace gave different tangents (a mirrored
+    // UV seam, a hard edge of the UV layout) becomes one vertex per tangent, as the reference's
+    // users (Blender, the glTF exporters) split them.
+    std::vector<glm::vec4> tangents(n, glm::vec4(0.0f));
+    std::vector<bool> assigned(n, false);
+    std::vector<std::vector<std::pair<glm::vec4, std::uint32_t>>> copies(n);  // a vertex's other tangents
+    for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
+        const std::uint32_t v = mesh.indices[c];
+        const glm::vec4& t = job.corners[c];
+        if (!assigned[v]) {
+            tangents[v] = t;
+            assigned[v] = true;
+            continue;
         }
-    }
-    mesh.tangents.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec3 normal(mesh.normals[i]);
-        glm::dvec3 tan = tangent[i] - normal * glm::dot(normal, tangent[i]);
-        double length = glm::length(tan);
-        if (!(length > 1e-12) || !std::isfinite(length)) {
-            // Any direction perpendicular to the normal.
-            tan = glm::cross(std::abs(normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), normal);
-            length = glm::length(tan);
+        if (tangents[v] == t) continue;
+        auto& others = copies[v];
+        const auto same = std::find_if(others.begin(), others.end(), [&](const auto& o) { return o.first == t; });
+        if (same != others.end()) {
+            mesh.indices[c] = same->second;
+            continue;
         }
-        tan /= length;
-        const double handedness = glm::dot(glm::cross(normal, tan), bitangent[i]) < 0.0 ? -1.0 : 1.0;
-        mesh.tangents[i] = glm::vec4(glm::vec3(tan), static_cast<float>(handedness));
+        const std::uint32_t copy = duplicateVertex(mesh, v);
+        tangents.push_back(t);
+        others.emplace_back(t, copy);
+        mesh.indices[c] = copy;
     }
+    for (std::size_t v = 0; v < n; ++v)
+        if (!assigned[v]) tangents[v] = anyTangent(mesh.normals[v]);
+    mesh.tangents = std::move(tangents);
 }
 
 void computeBounds(Mesh& mesh) {

@@ -106,3 +106,36 @@ TEST(TextureCache, EveryImageOfAGltfFileFromOneLoad) {
     EXPECT_EQ(cache.find(first)->rgba[0], 255);
     EXPECT_EQ(cache.find(second)->rgba[2], 255);
 }
+
+// glTF's textures are straight alpha (the specification; OpenImageIO associates alpha on decode
+// unless told not to): a texel of colour (200, 100, 50) and alpha 64 decodes as (200, 100, 50, 64),
+// not as (50, 25, 13, 64), from a file and from bytes embedded in a .glb alike.
+TEST(TextureCache, ColourIsKeptWhereAlphaIsBelowOne) {
+    TempDir dir;
+    const TestImage translucent =
+        makeImage(2, 2, 4, [](int, int) -> std::vector<std::uint8_t> { return {200, 100, 50, 64}; });
+    const fs::path png = dir.path() / "translucent.png";
+    writePng(translucent, png);
+    GltfWriter w;
+    const int texture = w.addTexture(w.addImage(encodePng(translucent)));
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(pbrMaterial("Leaf", {1, 1, 1, 1}, 0, 0.5, texture)))));
+    const fs::path glb = dir.path() / "leaf.glb";
+    w.writeGlb(glb);
+    const Asset asset = loadAsset(glb);
+    const TextureRef embedded = asset.materials.at(0).material.layers.maps.baseColor;
+    const TextureRef external{png.string(), -1, 0};
+
+    TextureCache cache;
+    EXPECT_TRUE(cache.load({embedded, external}, asset.images).empty());
+    for (const TextureRef& ref : {embedded, external}) {
+        const auto image = cache.find(ref);
+        ASSERT_NE(image, nullptr) << ref.key();
+        ASSERT_EQ(image->rgba.size(), 16u);
+        for (int texel = 0; texel < 4; ++texel) {
+            EXPECT_EQ(image->rgba[texel * 4 + 0], 200) << ref.key() << " texel " << texel;
+            EXPECT_EQ(image->rgba[texel * 4 + 1], 100) << ref.key();
+            EXPECT_EQ(image->rgba[texel * 4 + 2], 50) << ref.key();
+            EXPECT_EQ(image->rgba[texel * 4 + 3], 64) << ref.key();
+        }
+    }
+}

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -98,4 +99,87 @@ TEST(MeshBounds, ComputeBoundsAndValidity) {
     bad = mesh;
     bad.normals.pop_back();
     EXPECT_FALSE(bad.isValid()) << "fewer normals than positions";
+}
+
+// Tangents (computeTangents: MikkTSpace, the reference implementation, with glTF's sign).
+namespace {
+
+// A quad in z = 0 facing +Z over x in [x0, x1], y in [−1, 1], with u = uOf(x) and glTF's v
+// running down the image, v = (1 − y)/2; vertices 0..3 at (x0, 1), (x1, 1), (x1, −1), (x0, −1).
+void addQuad(Mesh& mesh, float x0, float x1, float (*uOf)(float)) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (const glm::vec2 xy : {glm::vec2(x0, 1), glm::vec2(x1, 1), glm::vec2(x1, -1), glm::vec2(x0, -1)}) {
+        mesh.positions.emplace_back(xy, 0.0f);
+        mesh.normals.emplace_back(0, 0, 1);
+        mesh.uvs.emplace_back(uOf(xy.x), (1.0f - xy.y) / 2.0f);
+    }
+    mesh.indices.insert(mesh.indices.end(), {base + 3, base + 2, base + 1, base + 3, base + 1, base});
+}
+
+// The bitangent the shader builds (material_maps.glsl; glTF): cross(N, T)·w.
+glm::vec3 bitangentOf(const Mesh& mesh, std::uint32_t v) {
+    return glm::cross(mesh.normals[v], glm::vec3(mesh.tangents[v])) * mesh.tangents[v].w;
+}
+
+}  // namespace
+
+// glTF: the normal map's +X is the tangent (u increasing), its +Y up the image (v decreasing).
+TEST(MeshTangents, FollowUAndPointTheBitangentUpTheImage) {
+    Mesh quad;
+    addQuad(quad, -1.0f, 1.0f, [](float x) { return (x + 1.0f) / 2.0f; });
+    computeTangents(quad);
+    ASSERT_TRUE(quad.isValid());
+    ASSERT_EQ(quad.tangents.size(), 4u);
+    for (std::uint32_t v = 0; v < 4; ++v) {
+        expectNear(glm::vec3(quad.tangents[v]), {1, 0, 0}, 1e-5f, "tangent " + std::to_string(v));
+        EXPECT_EQ(quad.tangents[v].w, 1.0f);
+        expectNear(bitangentOf(quad, v), {0, 1, 0}, 1e-5f, "bitangent " + std::to_string(v));
+    }
+}
+
+// A mirrored UV layout (u = |x|, the left half a mirror image of the right): each half's tangent
+// follows its own u, the bitangent stays up the image on both, and the seam's shared vertices are
+// split, one per tangent, as MikkTSpace's users split them.
+TEST(MeshTangents, MirroredSeamSplitsItsVerticesAndKeepsEachSidesFrame) {
+    Mesh mirrored;
+    addQuad(mirrored, 0.0f, 1.0f, [](float x) { return x; });
+    addQuad(mirrored, -1.0f, 0.0f, [](float x) { return -x; });
+    // The halves share the seam's two vertices (x = 0: same position, normal and UV): weld them.
+    mirrored.indices = {3, 2, 1, 3, 1, 0, 7, 3, 0, 7, 0, 4};
+    const std::size_t before = mirrored.vertexCount();
+    computeTangents(mirrored);
+    ASSERT_TRUE(mirrored.isValid());
+    EXPECT_EQ(mirrored.vertexCount(), before + 2) << "the seam's two vertices, once per side";
+    for (std::size_t c = 0; c < mirrored.indices.size(); ++c) {
+        const std::uint32_t v = mirrored.indices[c];
+        const bool left = c >= 6;
+        expectNear(glm::vec3(mirrored.tangents[v]), {left ? -1.0f : 1.0f, 0, 0}, 1e-5f, "corner " + std::to_string(c));
+        EXPECT_EQ(mirrored.tangents[v].w, left ? -1.0f : 1.0f) << "corner " << c;
+        expectNear(bitangentOf(mirrored, v), {0, 1, 0}, 1e-5f, "bitangent at corner " + std::to_string(c));
+    }
+}
+
+// The UV sphere (u around +Y, v from the top): away from the poles each tangent is unit, on the
+// sphere's tangent plane along ∂p/∂u, and the bitangent points toward the top (v decreasing),
+// each within the angle between neighbouring facets (a flat facet's UV gradient is not the smooth
+// sphere's: 3.6° at most here, the facets 7.5° apart).
+TEST(MeshTangents, OnTheUvSphereFollowLongitudeAndPointToTheTop) {
+    const int rings = 24, segments = 48;
+    const Mesh sphere = makeUvSphere(rings, segments);
+    ASSERT_TRUE(sphere.isValid());
+    ASSERT_EQ(sphere.tangents.size(), sphere.vertexCount());
+    const float facet = static_cast<float>(std::cos(2.0 * std::numbers::pi / segments));
+    int checked = 0;
+    for (std::uint32_t v = 0; v < sphere.vertexCount(); ++v) {
+        const glm::vec3 p = sphere.positions[v];
+        if (std::abs(p.y) > std::cos(2.0 * std::numbers::pi / rings)) continue;  // the two rings at each pole
+        const glm::vec3 t(sphere.tangents[v]);
+        const glm::vec3 alongU = glm::normalize(glm::vec3(-p.z, 0.0f, p.x));  // ∂p/∂φ, φ from +X toward +Z
+        EXPECT_NEAR(glm::length(t), 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(t, alongU), facet) << "vertex " << v;
+        const glm::vec3 towardTop = glm::normalize(glm::vec3(0, 1, 0) - p * p.y);
+        EXPECT_GT(glm::dot(bitangentOf(sphere, v), towardTop), facet) << "vertex " << v;
+        ++checked;
+    }
+    EXPECT_GT(checked, rings * segments / 2);
 }

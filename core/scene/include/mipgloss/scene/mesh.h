@@ -51,10 +51,14 @@ void computeVertexNormals(Mesh& mesh);
 void fillMissingNormals(Mesh& mesh);
 // Recomputes `bounds` from the positions.
 void computeBounds(Mesh& mesh);
-// Per-vertex tangents from the UVs (needs uvs): each triangle's tangent and bitangent from its
-// UV gradients, summed by corner angle, Gram–Schmidt against the normal, w the handedness
-// (MikkTSpace's rules per vertex, without its splitting of vertices at mirrored UV seams).
-// A vertex whose UVs are degenerate gets any unit tangent perpendicular to its normal.
+// Per-vertex tangents from the UVs (needs uvs and normals), MikkTSpace's: the reference
+// implementation (third_party/mikktspace, zlib licence), which glTF names for a file without
+// TANGENT and bakers bake normal maps against; the sign is glTF's (the bitangent up the image).
+// A vertex whose corners get different tangents (a mirrored UV seam) is split into one vertex per
+// tangent (duplicateVertex), so the vertex count may grow and indices change. A vertex no triangle
+// uses gets any unit tangent perpendicular to its normal.
 void computeTangents(Mesh& mesh);
+// Appends a copy of vertex `vertex` (every per-vertex array the mesh has) and returns its index.
+std::uint32_t duplicateVertex(Mesh& mesh, std::uint32_t vertex);
 
 }  // namespace mipgloss
