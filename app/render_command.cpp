@@ -57,7 +57,8 @@ const char* const kRenderUsage = R"(
                   [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
                   [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
-                  [--no-background] [--yaw DEG] [--pitch DEG] [--samples N] [--no-settle | --no-stack] [--quiet]
+                  [--no-background] [--background R,G,B] [--env-rotation DEG]
+                  [--yaw DEG] [--pitch DEG] [--camera NAME|INDEX] [--samples N] [--no-settle | --no-stack] [--quiet]
                   [--spin DEG] [--turntable N] [--turntable-spin object|environment]
                   [--compare-builder NAME] [--compare-env FILE]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr|PATTERN
@@ -92,6 +93,17 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  GL_MAX_VIEWPORT_DIMS), and --samples at most GL_MAX_SAMPLES
   --yaw DEG --pitch DEG
                  the camera's angles (the scene is framed again from there)
+  --camera NAME|INDEX
+                 look through a camera of the first --mesh glTF file (its name, or its index in
+                 the order the file's scene reaches them, from 0): position, orientation with its
+                 roll and vertical field of view as the file places it; --size gives the aspect
+  --background R,G,B
+                 hide the environment and lay the picture over this colour, as the screen shows
+                 it (sRGB-encoded, each 0 to 1; 1,1,1 is white), whatever the exposure and tone
+                 map; without it a hidden background (--no-background) is mid grey
+  --env-rotation DEG
+                 the environment turned by DEG about the vertical axis (its reflections and the
+                 background)
   --spin DEG     the scene turned by DEG about the vertical axis through the camera's target:
                  the objects on a turntable under the fixed environment (the background stays),
                  or with --turntable-spin environment only the environment
@@ -271,8 +283,28 @@ LibraryMaterial libraryEntry(const fs::path& file, const std::string& name) {
 
 // The scene `options` ask for: a file, meshes, the environment alone, or the default (whose
 // picture is 1024x384 unless --size says), with the flags' changes made. Warnings on stderr.
+// The glTF camera --camera names: in the first --mesh asset, by name, else by index.
+struct FileCamera {
+    AssetCamera camera;
+    Transform placement;  // the asset's, as addAsset placed it
+};
+
+AssetCamera chooseCamera(const Asset& asset, const fs::path& file, const std::string& wanted) {
+    for (const AssetCamera& c : asset.cameras)
+        if (c.name == wanted) return c;
+    if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos && wanted.size() < 9) {
+        const std::size_t index = std::stoul(wanted);
+        if (index < asset.cameras.size()) return asset.cameras[index];
+    }
+    std::string names;
+    for (std::size_t i = 0; i < asset.cameras.size(); ++i)
+        names += (i ? ", " : "") + std::to_string(i) + " \"" + asset.cameras[i].name + "\"";
+    throw AssetError(file, "has no camera \"" + wanted + "\"" +
+                               (names.empty() ? std::string(" (it has no perspective camera)") : " (its cameras: " + names + ")"));
+}
+
 Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>& libraryMaterial, int& width,
-                    int& height, EncodedImages& keptImages) {
+                    int& height, EncodedImages& keptImages, std::optional<FileCamera>& fileCamera) {
     Scene scene;
     if (o.scene) {
         ui::SceneFileReport report;
@@ -293,7 +325,9 @@ Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>
             const Asset asset = loadAsset(p);
             printWarnings(asset.warnings, o.quiet);
             keptImages.insert(asset.images.begin(), asset.images.end());  // from the parse that read them
-            addAsset(scene, asset, p.string(), nextInRow(assetBounds(asset), cursor), Material{});
+            const Transform placement = nextInRow(assetBounds(asset), cursor);
+            addAsset(scene, asset, p.string(), placement, Material{});
+            if (o.camera && !fileCamera) fileCamera = FileCamera{chooseCamera(asset, p, *o.camera), placement};
         }
     }
     if (libraryMaterial) {
@@ -318,13 +352,17 @@ Scene sceneToRender(const RenderOptions& o, const std::optional<LibraryMaterial>
     if (o.toneMap) scene.display.toneMap = *o.toneMap;
     if (o.backgroundLambda) scene.display.backgroundLambda = *o.backgroundLambda;
     if (o.noBackground) scene.display.showBackground = false;
+    if (o.background) scene.display.showBackground = false, scene.display.backdrop = *o.background;
+    if (o.envRotation) scene.display.environmentRotationDegrees = *o.envRotation;
     if (o.samples) scene.display.samples = *o.samples;
     return scene;
 }
 
 // The scene's own camera (its field of view and framing as saved; --size gives the aspect),
 // unless its objects were replaced; else framed. --yaw/--pitch frame again from there.
-OrbitCamera cameraToRender(const RenderOptions& o, const Scene& scene, float aspect) {
+OrbitCamera cameraToRender(const RenderOptions& o, const Scene& scene, float aspect,
+                           const std::optional<FileCamera>& fileCamera) {
+    if (fileCamera) return viewThrough(fileCamera->camera, fileCamera->placement, sceneBounds(scene));
     OrbitCamera camera = scene.camera && o.meshes.empty() ? *scene.camera : framingCamera(scene, aspect);
     if (o.yaw || o.pitch) {
         if (o.yaw) camera.yawDegrees = *o.yaw;
@@ -407,7 +445,8 @@ int runRender(Args args, const char* argv0) {
     checkWritableFolder(firstOut);
     if (o.aov) checkWritableFolder(*o.aov);
     EncodedImages keptImages;  // the assets' embedded images, kept from the parse that read them
-    Scene scene = sceneToRender(o, libraryMaterialEntry, width, height, keptImages);
+    std::optional<FileCamera> fileCamera;
+    Scene scene = sceneToRender(o, libraryMaterialEntry, width, height, keptImages, fileCamera);
     const bool linear = lowerExtension(firstOut) == ".exr";
 
     // The materials' texture maps, decoded on worker threads (textures.h); one that cannot be read
@@ -425,7 +464,7 @@ int runRender(Args args, const char* argv0) {
     times.environment = secondsSince(start);
     printWarnings(environment->report.warnings, o.quiet);
 
-    const OrbitCamera camera = cameraToRender(o, scene, static_cast<float>(width) / static_cast<float>(height));
+    const OrbitCamera camera = cameraToRender(o, scene, static_cast<float>(width) / static_cast<float>(height), fileCamera);
     const float rotation = scene.display.environmentRotationDegrees;
     // The scene turned by `degrees` (turntable.h): the camera to draw through, the scene's
     // environment rotation set to match.

@@ -1,5 +1,7 @@
 #include "render_options.h"
 
+#include <glm/vector_relational.hpp>
+
 namespace mipgloss::app {
 
 namespace {
@@ -41,6 +43,12 @@ RenderOptions parseRenderOptions(Args args) {
         else if (a == "--compare-builder") o.compareBuilder = parseChoice(a, value(), kBuilders, builderName);
         else if (a == "--compare-env") o.compareEnv = value();
         else if (a == "--no-background") o.noBackground = true;
+        else if (a == "--background") {
+            o.background = parseTint(a, value());
+            if (glm::any(glm::greaterThan(*o.background, Rgb(1.0f))))
+                throw UsageError(a + " takes a colour as the screen shows it, each of R,G,B in [0, 1]");
+        } else if (a == "--camera") o.camera = value();
+        else if (a == "--env-rotation") o.envRotation = parseFloat(a, value(), -360.0f, 360.0f);
         else if (a == "--quiet") o.quiet = true;
         else if (a == "--no-settle") o.noSettle = true;
         else if (a == "--no-stack") o.noStack = true;
@@ -55,6 +63,8 @@ RenderOptions parseRenderOptions(Args args) {
     if (o.compare() && o.turntable)
         throw UsageError(compareFlag + " and --turntable do not go together (one picture or a turn)");
     if (o.compare() && o.aov) throw UsageError(compareFlag + " and --aov do not go together (the AOV of which half?)");
+    if (o.camera && o.meshes.empty()) throw UsageError("--camera NAME|INDEX looks through a camera of a --mesh glTF file");
+    if (o.camera && (o.yaw || o.pitch)) throw UsageError("--camera and --yaw/--pitch do not go together (whose view?)");
     if (o.turntable && o.aov) throw UsageError("--turntable and --aov do not go together");
     if (o.noSettle && o.noStack)
         throw UsageError("--no-settle and --no-stack do not go together (the stack ahead, or none?)");

@@ -26,7 +26,9 @@ struct RenderOptions {
     std::string lambdaFlag;
     LayerFlags layers;
     std::optional<LookupMode> mode;
-    std::optional<float> exposure, backgroundLambda, yaw, pitch, spin;
+    std::optional<float> exposure, backgroundLambda, yaw, pitch, spin, envRotation;
+    std::optional<Rgb> background;     // --background: the backdrop, the environment hidden
+    std::optional<std::string> camera; // --camera: a glTF camera of the (first) asset, by name or index
     std::optional<ToneMap> toneMap;
     std::optional<int> envSize, samples, turntable;
     std::optional<Builder> builder, compareBuilder;

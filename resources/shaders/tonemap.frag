@@ -6,7 +6,10 @@ uniform int uToneMap;     // TONE_MAP_LINEAR (clipped), _REINHARD, _ACES (Narkow
 // 1: the target's alpha is the coverage (Renderer::setTransparentBackground). The resolved colour
 // is then premultiplied by it (cleared to 0, edges averaged with it), so it is divided out before
 // the tone map, which is not linear, and the alpha written beside the colour (straight alpha).
+// 2: the same coverage, the picture then laid over uBackdrop (sRGB-encoded, as the screen shows
+// it) in linear light, so the backdrop is the colour asked for whatever the exposure or tone map.
 uniform int uAlpha;
+uniform vec3 uBackdrop;
 
 layout(location = 0) out vec4 fragColour;
 
@@ -20,9 +23,18 @@ vec3 srgbEncode(vec3 c) {
     return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
+vec3 srgbDecode(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
 void main() {
     vec4 texel = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0);
-    float alpha = uAlpha == 1 ? clamp(texel.a, 0.0, 1.0) : 1.0;
+    float alpha = uAlpha != 0 ? clamp(texel.a, 0.0, 1.0) : 1.0;
     vec3 hdr = alpha > 0.0 ? texel.rgb / alpha : vec3(0.0);
-    fragColour = vec4(srgbEncode(toneMap(max(hdr, 0.0) * uExposure)), alpha);
+    vec3 display = toneMap(max(hdr, 0.0) * uExposure);
+    if (uAlpha == 2) {
+        fragColour = vec4(srgbEncode(mix(srgbDecode(uBackdrop), display, alpha)), 1.0);
+        return;
+    }
+    fragColour = vec4(srgbEncode(display), alpha);
 }

@@ -5,6 +5,8 @@
 #include "formats/reading.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include <algorithm>
 #include <array>
@@ -124,6 +126,16 @@ Asset loadAsset(const fs::path& path) {
 
 LibraryMaterial libraryEntryOf(const AssetMaterial& material) {
     return {materialNameProblem(material.name).empty() ? material.name : "Material", material.material};
+}
+
+OrbitCamera viewThrough(const AssetCamera& camera, const Transform& placement, const Bounds& scene) {
+    const glm::mat4 m = placement.matrix();
+    const glm::mat3 turn(m);  // rotation × uniform scale: directions keep their angles
+    const glm::vec3 position(m * glm::vec4(camera.position, 1.0f));
+    const glm::vec3 forward = glm::normalize(turn * camera.forward);
+    const glm::vec3 up = glm::normalize(turn * camera.up);
+    const float ahead = glm::dot(scene.centre() - position, forward);
+    return cameraThrough(position, forward, up, camera.fovYDegrees, std::max(ahead, 1e-3f * std::max(scene.radius(), 1e-6f)));
 }
 
 Bounds assetBounds(const Asset& asset) {

@@ -26,7 +26,11 @@ glm::vec3 OrbitCamera::position() const {
 }
 
 glm::mat4 OrbitCamera::view() const {
-    return glm::lookAt(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 upright = glm::lookAt(position(), target, glm::vec3(0.0f, 1.0f, 0.0f));
+    if (rollDegrees == 0.0f) return upright;
+    // The camera's right and up turned by the roll ρ about its back axis: in view space a point's
+    // (x, y) turn by −ρ.
+    return glm::rotate(glm::mat4(1.0f), -glm::radians(rollDegrees), glm::vec3(0.0f, 0.0f, 1.0f)) * upright;
 }
 
 glm::mat4 OrbitCamera::projection(float aspect, const Bounds& scene) const {
@@ -37,6 +41,23 @@ glm::mat4 OrbitCamera::projection(float aspect, const Bounds& scene) const {
     const float nearPlane = std::max(distance - 2.0f * radius, distance * 1e-3f);
     const float farPlane = distance + 2.0f * radius + nearPlane;
     return glm::perspective(glm::radians(fovYDegrees), std::max(aspect, 1e-3f), nearPlane, farPlane);
+}
+
+OrbitCamera cameraThrough(const glm::vec3& position, const glm::vec3& forward, const glm::vec3& up, float fovYDegrees,
+                          float distance) {
+    OrbitCamera camera;
+    const glm::vec3 back = -glm::normalize(forward);
+    camera.pitchDegrees = std::clamp(glm::degrees(std::asin(std::clamp(back.y, -1.0f, 1.0f))), -kMaxPitch, kMaxPitch);
+    camera.yawDegrees = glm::degrees(std::atan2(back.x, back.z));
+    camera.fovYDegrees = fovYDegrees;
+    camera.distance = distance;
+    const glm::vec3 orbitBack = viewBack(camera.yawDegrees, camera.pitchDegrees);
+    camera.target = position - distance * orbitBack;
+    // The roll: the angle from the upright camera's up to `up`, about the back axis.
+    const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), orbitBack));
+    const glm::vec3 uprightUp = glm::cross(orbitBack, right);
+    camera.rollDegrees = glm::degrees(std::atan2(-glm::dot(up, right), glm::dot(up, uprightUp)));
+    return camera;
 }
 
 void OrbitCamera::orbit(float dYawDegrees, float dPitchDegrees) {

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -282,6 +283,28 @@ TEST(MaterialValidity, ALambdaInRangeAndAFiniteNonNegativeTint) {
         bad.tint.g = c;
         EXPECT_FALSE(isValidMaterial(bad)) << c;
     }
+}
+
+// A glTF camera (cameraThrough): the view matrix it gives puts the camera's position at the origin,
+// its forward along −Z and its up along +Y, roll included (Mixer's camera0 of the 3D Commerce
+// suite: a node rotation with a roll of about 4°; and one rolled by 30° about a level forward).
+TEST(OrbitCamera, LooksThroughAGltfCameraWithItsRoll) {
+    const auto check = [](const glm::vec3& position, const glm::quat& rotation) {
+        const glm::vec3 forward = rotation * glm::vec3(0, 0, -1), up = rotation * glm::vec3(0, 1, 0);
+        const OrbitCamera camera = cameraThrough(position, forward, up, 40.0f, 2.5f);
+        EXPECT_NEAR(glm::length(camera.position() - position), 0.0f, 1e-5f);
+        const glm::mat4 view = camera.view();
+        const glm::vec3 ahead(view * glm::vec4(position + forward, 1.0f));
+        const glm::vec3 above(view * glm::vec4(up, 0.0f));
+        EXPECT_NEAR(glm::length(ahead - glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
+        EXPECT_NEAR(glm::length(above - glm::vec3(0, 1, 0)), 0.0f, 1e-5f);
+        EXPECT_EQ(camera.fovYDegrees, 40.0f);
+    };
+    check({-0.36f, 0.22f, 0.26f}, glm::normalize(glm::quat(0.8792929f, -0.0879293f, -0.4660252f, -0.0439646f)));
+    check({1.0f, 2.0f, 3.0f}, glm::angleAxis(glm::radians(30.0f), glm::vec3(0, 0, -1)));
+    const OrbitCamera rolled = cameraThrough({0, 0, 5}, {0, 0, -1},
+                                             glm::angleAxis(glm::radians(30.0f), glm::vec3(0, 0, -1)) * glm::vec3(0, 1, 0), 40.0f, 5.0f);
+    EXPECT_NEAR(rolled.rollDegrees, -30.0f, 1e-3f) << "a camera turned clockwise as it looks (about −Z by +30°)";
 }
 
 }  // namespace

@@ -119,6 +119,10 @@ public:
         DisplaySettings d;
         const std::string where = "display";
         d.showBackground = boolean(o, "showBackground", where, d.showBackground);
+        d.backdrop = vec3(o, "backdrop", where, d.backdrop);
+        for (int c = 0; c < 3; ++c)
+            if (!(d.backdrop[c] >= 0.0f && d.backdrop[c] <= 1.0f))
+                fail("\"display.backdrop[" + std::to_string(c) + "]\" is " + show(d.backdrop[c]) + ", not in [0, 1]");
         d.backgroundLambda = static_cast<float>(lambdaValue(o, "backgroundLambda", where));
         d.exposureEv = static_cast<float>(clamped(number(o, "exposureEv", where, d.exposureEv),
                                                   -static_cast<double>(kMaxExposureEv),
@@ -162,6 +166,7 @@ public:
         c.yawDegrees = static_cast<float>(number(o, "yawDegrees", where, c.yawDegrees));
         c.pitchDegrees = static_cast<float>(number(o, "pitchDegrees", where, c.pitchDegrees));
         c.fovYDegrees = static_cast<float>(number(o, "fovYDegrees", where, c.fovYDegrees));
+        c.rollDegrees = rotation(o, "rollDegrees", where);  // optional: 0 in files before it
         if (const CameraProblem p = cameraProblem(c); !p.key.empty()) fail("\"" + p.key + "\" " + p.reason);
         return c;
     }
@@ -258,7 +263,8 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
     };
     const DisplaySettings& d = scene.display;
     QJsonObject display{
-        {"showBackground", d.showBackground}, {"backgroundLambda", d.backgroundLambda},
+        {"showBackground", d.showBackground}, {"backdrop", vec3ToJson(d.backdrop)},
+        {"backgroundLambda", d.backgroundLambda},
         {"exposureEv", d.exposureEv},         {"toneMap", toneMapName(d.toneMap)},
         {"samples", d.samples},
         {"environmentRotationDegrees", d.environmentRotationDegrees},
@@ -301,6 +307,7 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
                                   {"yawDegrees", c->yawDegrees},
                                   {"pitchDegrees", c->pitchDegrees},
                                   {"fovYDegrees", c->fovYDegrees},
+                                  {"rollDegrees", c->rollDegrees},
                               });
     }
     return QJsonDocument(root).toJson(QJsonDocument::Indented);

@@ -185,12 +185,14 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, d.msFbo);
     gl->glViewport(0, 0, width, height);
-    const float grey = 0.18f;  // without a background: a mid grey, linear
-    const bool transparent = d.transparentBackground && !scene.display.showBackground;
-    if (transparent)
+    // Without the background the target's alpha is the objects' coverage: the tone pass lays
+    // the picture over the backdrop (or hands the coverage on, for a transparent export).
+    const bool hidden = !scene.display.showBackground;
+    const bool transparent = d.transparentBackground && hidden;
+    if (hidden)
         gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     else
-        gl->glClearColor(grey, grey, grey, 1.0f);
+        gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl->glStencilMask(0xFF);
     gl->glClearStencil(0);
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
@@ -252,7 +254,9 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
     tone.bind();
     tone.setUniformValue("uExposure", std::exp2(scene.display.exposureEv));
     tone.setUniformValue("uToneMap", static_cast<int>(scene.display.toneMap));
-    tone.setUniformValue("uAlpha", transparent ? 1 : 0);
+    tone.setUniformValue("uAlpha", transparent ? 1 : hidden ? 2 : 0);
+    const Rgb backdrop = glm::clamp(scene.display.backdrop, 0.0f, 1.0f);
+    tone.setUniformValue("uBackdrop", backdrop.r, backdrop.g, backdrop.b);
     if (d.outputRect) {
         gl->glEnable(GL_SCISSOR_TEST);
         gl->glScissor((*d.outputRect)[0], (*d.outputRect)[1], (*d.outputRect)[2], (*d.outputRect)[3]);

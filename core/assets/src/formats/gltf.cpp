@@ -480,8 +480,45 @@ public:
         onPath_[i] = true;
         const glm::dmat4 world = parent * localMatrix(node, at);
         if (node.mesh >= 0) addMesh(node, node.mesh, world, at);
+        if (node.camera >= 0) addCamera(node.camera, node.name, world, at);
         for (int child : node.children) visit(child, world, depth + 1, at);
         onPath_[i] = false;
+    }
+
+    // A camera as its node places it: −Z forward, +Y up, the node's scale dropped (glTF: cameras
+    // are not scaled; their node's axes are normalized here).
+    void addCamera(int index, const std::string& nodeName, const glm::dmat4& world, const std::string& nodeAt) {
+        if (static_cast<std::size_t>(index) >= model_.cameras.size())
+            fail(nodeAt, "refers to camera " + std::to_string(index) + ", but the file has " + std::to_string(model_.cameras.size()));
+        const tinygltf::Camera& gc = model_.cameras[static_cast<std::size_t>(index)];
+        const std::string at = element("camera", static_cast<std::size_t>(index), gc.name);
+        if (gc.type != "perspective") {
+            warn(at + " (placed by " + nodeAt + ") is " + (gc.type.empty() ? std::string("of no type") : gc.type) +
+                 "; only perspective cameras are read");
+            return;
+        }
+        const double yfov = gc.perspective.yfov;
+        if (!(yfov > 0.0 && yfov < 3.1415)) {
+            warn(at + " has a yfov of " + std::to_string(yfov) + " radians, not in (0, π); left out");
+            return;
+        }
+        const glm::dvec3 position(world[3]);
+        glm::dvec3 forward = -glm::dvec3(world[2]);
+        glm::dvec3 up = glm::dvec3(world[1]);
+        up -= forward * (glm::dot(forward, up) / std::max(glm::dot(forward, forward), 1e-300));
+        const double fl = glm::length(forward), ul = glm::length(up);
+        if (!(fl > 1e-12 && ul > 1e-12) || !std::isfinite(fl) || !std::isfinite(ul) || !std::isfinite(position.x) ||
+            !std::isfinite(position.y) || !std::isfinite(position.z)) {
+            warn(at + " is placed by " + nodeAt + " with a matrix that is singular or not finite; left out");
+            return;
+        }
+        AssetCamera camera;
+        camera.name = !gc.name.empty() ? gc.name : !nodeName.empty() ? nodeName : "camera " + std::to_string(index);
+        camera.position = glm::vec3(position);
+        camera.forward = glm::vec3(forward / fl);
+        camera.up = glm::vec3(up / ul);
+        camera.fovYDegrees = static_cast<float>(yfov * 180.0 / 3.14159265358979323846);
+        asset_.cameras.push_back(std::move(camera));
     }
 
     void addMesh(const tinygltf::Node& node, int meshIndex, const glm::dmat4& world, const std::string& nodeAt) {

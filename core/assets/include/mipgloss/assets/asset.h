@@ -29,6 +29,7 @@
 
 #include "mipgloss/scene/library.h"
 #include "mipgloss/assets/mesh_files.h"
+#include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/scene.h"
 
 #include <filesystem>
@@ -60,6 +61,21 @@ struct AssetPart {
     int material = -1;                 // index into Asset::materials, -1: none (the default material)
 };
 
+// A glTF camera as its node places it (world space; the file's own units): a perspective camera
+// looks along its node's −Z with +Y up. Orthographic cameras are not read (a warning names them).
+struct AssetCamera {
+    std::string name;      // the camera's name, or its node's, or "camera N"
+    glm::vec3 position{0.0f};
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
+    glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, perpendicular to forward
+    float fovYDegrees = 45.0f;             // yfov
+};
+
+// The orbit camera that looks through `camera` once its asset is placed by `placement` (addAsset),
+// its target on the view axis as far ahead as `scene`'s centre (at least a thousandth of the
+// scene's radius ahead).
+OrbitCamera viewThrough(const AssetCamera& camera, const Transform& placement, const Bounds& scene);
+
 // An image as the file holds it (PNG, JPEG, ...) and its MIME type ("image/png"...), for decoding
 // (TextureCache).
 struct EncodedImage {
@@ -72,6 +88,7 @@ using EncodedImages = std::map<std::string, std::shared_ptr<const EncodedImage>>
 struct Asset {
     std::vector<AssetPart> parts;
     std::vector<AssetMaterial> materials;
+    std::vector<AssetCamera> cameras;   // glTF: in the order the scene's nodes reach them
     std::vector<std::string> warnings;  // one line each, naming the file
     // Read by loadMesh (a plain mesh file): its one part is the whole file (SceneObject::meshPart -1).
     bool wholeFile = false;

@@ -20,6 +20,10 @@ struct OrbitCamera {
     float yawDegrees = 0.0f;
     float pitchDegrees = 10.0f;
     float fovYDegrees = 30.0f;
+    // The picture turned about the view axis, counter-clockwise as the viewer sees the scene turn
+    // clockwise (a camera rolled to its left): a glTF camera's full orientation (cameraThrough).
+    // The gestures keep it.
+    float rollDegrees = 0.0f;
 
     glm::vec3 position() const;
     glm::mat4 view() const;
@@ -39,6 +43,13 @@ struct OrbitCamera {
 
     bool operator==(const OrbitCamera&) const = default;
 };
+
+// The orbit camera at `position` looking along `forward` with `up` (unit, perpendicular to
+// forward: a glTF camera node's −Z and +Y in world space), its target `distance` ahead: yaw and
+// pitch from forward, roll from up. Pitch is clamped to ±89° like the gestures', so a camera
+// looking straight up or down is drawn 1° off it.
+OrbitCamera cameraThrough(const glm::vec3& position, const glm::vec3& forward, const glm::vec3& up, float fovYDegrees,
+                          float distance);
 
 // The six planes of a view-projection matrix (Gribb & Hartmann 2001), normalized, pointing in.
 struct Frustum {

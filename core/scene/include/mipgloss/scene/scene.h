@@ -200,6 +200,10 @@ inline constexpr float kMaxExposureEv = 120.0f;
 
 struct DisplaySettings {
     bool showBackground = true;
+    // What is behind the objects when the background is hidden: a colour as the screen shows it
+    // (sRGB-encoded, each in [0, 1]), laid under the tone-mapped picture, so exposure and the tone
+    // map never change it (the certification's white is 1, 1, 1; docs/certification.md).
+    Rgb backdrop{0.5f};
     float backgroundLambda = 0.0f;  // the background's own blur, as a material's λ (phong.h)
     float exposureEv = 0.0f;        // linear colour × 2^EV before tone mapping, |EV| ≤ kMaxExposureEv
     ToneMap toneMap = ToneMap::Aces;
