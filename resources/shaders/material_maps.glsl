@@ -17,7 +17,7 @@ uniform vec3 uBaseColor;
 uniform float uBaseAlpha, uMetallic, uRoughness, uSpecular;
 uniform float uNormalScale, uOcclusionStrength;
 uniform vec3 uEmissive;
-uniform int uAlphaMode;  // ALPHA_OPAQUE, ALPHA_MASK, ALPHA_BLEND (drawn opaque)
+uniform int uAlphaMode;  // ALPHA_OPAQUE, ALPHA_MASK, ALPHA_BLEND (its alpha the coverage it is blended with)
 uniform float uAlphaCutoff;
 
 struct MaterialSample {

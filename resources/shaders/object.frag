@@ -125,7 +125,9 @@ void main() {
     // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
     if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), p.coatWeight);
     if (p.cut) discard;
-    fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, 1.0);
+    // A blended material's alpha is its coverage (glTF): the renderer blends it over what is
+    // behind (object_pass.cpp).
+    fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, p.alpha);
 #else
     vec3 value = p.wSpecular * readLayer(uEnvironment, p.specular);
     fragColour = vec4(value, 1.0);

@@ -69,6 +69,7 @@ struct FragmentPlan {
     float occlusion;                  // multiplies the sum (1 without maps)
     vec3 emissive;                    // added to it (0 without maps)
     bool cut;                         // alpha below the mask's cutoff: no fragment
+    float alpha;                      // the coverage blended materials draw with (else 1)
 };
 
 LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) {
@@ -122,6 +123,7 @@ FragmentPlan planFragment() {
     p.occlusion = 1.0;
     p.emissive = vec3(0.0);
     p.cut = false;
+    p.alpha = 1.0;
 #ifdef MATERIAL_MAPS
     // The mapped normal gives both lookup directions (material_maps.glsl).
     MaterialSample s = sampleMaterial(n);
@@ -129,6 +131,7 @@ FragmentPlan planFragment() {
     p.occlusion = s.occlusion;
     p.emissive = s.emissive;
     p.cut = s.cut;
+    if (uAlphaMode == ALPHA_BLEND) p.alpha = clamp(s.alpha, 0.0, 1.0);
 #endif
     p.cosView = clamp(dot(n, v), 0.0, 1.0);
     // Both lookup directions and their footprints, in uniform control flow.

@@ -107,7 +107,7 @@ bool MaterialMaps::anyTexture() const { return !textures().empty(); }
 
 bool MaterialMaps::inUse() const {
     return anyTexture() || emissiveFactor.r > 0.0f || emissiveFactor.g > 0.0f || emissiveFactor.b > 0.0f ||
-           alphaMode == AlphaMode::Mask;
+           alphaMode == AlphaMode::Mask || alphaMode == AlphaMode::Blend;
 }
 
 std::vector<TextureRef> MaterialMaps::textures() const {

@@ -59,6 +59,7 @@ QJsonObject mapsToJson(const MaterialMaps& m, const std::filesystem::path& fileF
     out.insert("baseAlpha", m.baseAlpha);
     out.insert("alphaMode", alphaModeName(m.alphaMode));
     out.insert("alphaCutoff", m.alphaCutoff);
+    out.insert("doubleSided", m.doubleSided);
     return out;
 }
 
@@ -279,6 +280,7 @@ MaterialMaps JsonReader::maps(const QJsonObject& o, const std::string& where) co
     const std::string mode = string(o, "alphaMode", where, &opaque);
     if (!parseAlphaMode(mode, m.alphaMode))
         fail("\"" + keyName(where, "alphaMode") + "\" is \"" + mode + "\": it is opaque, mask or blend");
+    m.doubleSided = boolean(o, "doubleSided", where, m.doubleSided);
     return m;
 }
 

@@ -50,7 +50,7 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     gl->glBindSampler(unitIndex(TextureUnit::Irradiance), 0);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
-    d.drawAllObjects(true, scene, camera.position(), viewProjection,
+    d.drawAllObjects(true, Renderer::Impl::ObjectSet::All, scene, camera.position(), viewProjection,
                      environmentRotation(scene.display.environmentRotationDegrees),
                      Frustum::fromViewProjection(viewProjection));
     gl->glBindSampler(unitIndex(TextureUnit::Chain), 0);

@@ -194,7 +194,9 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
 
 // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
 // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
-void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum, bool aov, ObjectProgram kind) {
+void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const std::vector<int>& objects,
+                                 const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation,
+                                 const Frustum& frustum, bool aov) {
     program.bind();
     gl->glUniformMatrix4fv(program.uniformLocation("uViewProjection"), 1, GL_FALSE,
                            glm::value_ptr(viewProjection));
@@ -239,9 +241,9 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
                                                                         : std::numeric_limits<float>::infinity());
     }
 
-    for (const SceneObject& object : scene.objects) {
+    for (const int index : objects) {
+        const SceneObject& object = scene.objects[static_cast<std::size_t>(index)];
         if (!object.visible || !object.mesh || object.mesh->indices.empty()) continue;
-        if (programOf(scene.materialOf(object)) != kind) continue;  // another program's
         if (!frustum.intersectsSphere(object.worldCentre(), object.worldRadius())) {
             if (!aov) ++counters.objectsCulled;
             continue;
@@ -272,6 +274,9 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
             read.settled = plan.readsLobeStack && !plan.sharperAtGrazing && stackHolds(plan.exponent);
             read.fromChain = !read.settled && plan.readsChainForLobe();
         }
+        // glTF's doubleSided false: the back faces are not drawn (every other material shows both).
+        if (m.layered && !m.layers.maps.doubleSided) gl->glEnable(GL_CULL_FACE);
+        else gl->glDisable(GL_CULL_FACE);
         gl->glBindVertexArray(mesh.vao);
         gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         if (aov) continue;
@@ -284,16 +289,50 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
 
 // The objects, in their programs: the single lobes, the glTF materials, those with maps
 // (drawObjects's `kind`, programOf).
-void Renderer::Impl::drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum) {
-    const std::pair<ObjectProgram, QOpenGLShaderProgram*> programs[] = {
-        {ObjectProgram::Single, aov ? aovProgram.get() : objectProgram.get()},
-        {ObjectProgram::Layered, aov ? aovLayeredProgram.get() : objectLayeredProgram.get()},
-        {ObjectProgram::LayeredMaps, aov ? aovMapsProgram.get() : objectMapsProgram.get()}};
-    for (const auto& [kind, program] : programs)
-        if (std::any_of(scene.objects.begin(), scene.objects.end(), [&, k = kind](const SceneObject& o) {
-                return o.visible && o.mesh && programOf(scene.materialOf(o)) == k;
-            }))
-            drawObjects(*program, scene, eye, viewProjection, envRotation, frustum, aov, kind);
+void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene, const glm::vec3& eye,
+                                    const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum) {
+    auto programFor = [&](ObjectProgram kind) {
+        switch (kind) {
+            case ObjectProgram::Single: return aov ? aovProgram.get() : objectProgram.get();
+            case ObjectProgram::Layered: return aov ? aovLayeredProgram.get() : objectLayeredProgram.get();
+            case ObjectProgram::LayeredMaps: break;
+        }
+        return aov ? aovMapsProgram.get() : objectMapsProgram.get();
+    };
+    std::vector<int> chosen;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
+        if (!o.visible || !o.mesh) continue;
+        const bool blended = isBlended(scene.materialOf(o));
+        if (set == ObjectSet::All || (set == ObjectSet::Blended) == blended) chosen.push_back(static_cast<int>(i));
+    }
+    if (set == ObjectSet::Blended) {
+        // Farthest first, by the distance to each object's (glTF: each primitive's) centre, so each
+        // is blended over what lies behind it (order-dependent blending; overlapping parts of one
+        // object, or objects that interpenetrate, can still be out of order).
+        std::vector<float> distance(scene.objects.size(), 0.0f);
+        for (const int i : chosen) distance[static_cast<std::size_t>(i)] = glm::length(scene.objects[static_cast<std::size_t>(i)].worldCentre() - eye);
+        std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) {
+            return distance[static_cast<std::size_t>(a)] > distance[static_cast<std::size_t>(b)];
+        });
+        // In that order, each run of one program drawn together.
+        for (std::size_t start = 0; start < chosen.size();) {
+            const ObjectProgram kind = programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(chosen[start])]));
+            std::size_t end = start + 1;
+            while (end < chosen.size() && programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(chosen[end])])) == kind) ++end;
+            const std::vector<int> run(chosen.begin() + static_cast<std::ptrdiff_t>(start), chosen.begin() + static_cast<std::ptrdiff_t>(end));
+            drawObjects(*programFor(kind), scene, run, eye, viewProjection, envRotation, frustum, aov);
+            start = end;
+        }
+        return;
+    }
+    // Covering objects in any order: each program once, its objects together.
+    for (const ObjectProgram kind : {ObjectProgram::Single, ObjectProgram::Layered, ObjectProgram::LayeredMaps}) {
+        std::vector<int> ofKind;
+        for (const int i : chosen)
+            if (programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(i)])) == kind) ofKind.push_back(i);
+        if (!ofKind.empty()) drawObjects(*programFor(kind), scene, ofKind, eye, viewProjection, envRotation, frustum, aov);
+    }
 }
 
 }  // namespace mipgloss::ui

@@ -212,7 +212,7 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
         gl->glActiveTexture(GL_TEXTURE0);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, d.environmentTexture);
 
-        d.drawAllObjects(false, scene, camera.position(), viewProjection, envRotation, frustum);
+        d.drawAllObjects(false, Impl::ObjectSet::Covering, scene, camera.position(), viewProjection, envRotation, frustum);
 
         if (scene.display.showBackground) {
             // Drawn last at the far plane, so covered pixels are never shaded.
@@ -238,6 +238,16 @@ void Renderer::render(const Scene& scene, const OrbitCamera& camera, int width, 
             gl->glDepthMask(GL_TRUE);
             gl->glDepthFunc(GL_LESS);
         }
+        // Blended materials over everything else (glTF's BLEND): colour by their alpha; the
+        // target's alpha (the coverage the tone pass reads) by alpha over what it had. Depth
+        // tested, not written, so each shows what lies behind it.
+        gl->glEnable(GL_BLEND);
+        gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        gl->glDepthMask(GL_FALSE);
+        d.drawAllObjects(false, Impl::ObjectSet::Blended, scene, camera.position(), viewProjection, envRotation, frustum);
+        gl->glDepthMask(GL_TRUE);
+        gl->glDisable(GL_BLEND);
+        gl->glDisable(GL_CULL_FACE);
         gl->glBindSampler(unitIndex(TextureUnit::Chain), 0);
     }
     d.drawOutline(scene, viewProjection, width, height);

@@ -158,13 +158,18 @@ struct Renderer::Impl {
     static ObjectProgram programOf(const Material& m) {
         return !m.layered ? ObjectProgram::Single : drawsMaps(m) ? ObjectProgram::LayeredMaps : ObjectProgram::Layered;
     }
-    void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const glm::vec3& eye,
-                     const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum,
-                     bool aov, ObjectProgram kind);
+    static bool isBlended(const Material& m) { return m.layered && m.layers.maps.alphaMode == AlphaMode::Blend; }
+    // Draws scene.objects[i] for each i of `objects`, in that order, with `program`.
+    void drawObjects(QOpenGLShaderProgram& program, const Scene& scene, const std::vector<int>& objects,
+                     const glm::vec3& eye, const glm::mat4& viewProjection, const glm::mat3& envRotation,
+                     const Frustum& frustum, bool aov);
 
-    // The objects, in two programs: those without maps, then those with (drawObjects's `mapped`).
-    void drawAllObjects(bool aov, const Scene& scene, const glm::vec3& eye, const glm::mat4& viewProjection,
-                        const glm::mat3& envRotation, const Frustum& frustum);
+    // Which objects drawAllObjects draws: those that cover what is behind them (opaque and
+    // masked), those blended over it (glTF's BLEND: after the background, farthest first, depth
+    // not written), or every one as if opaque (the AOV: what the nearest surface is).
+    enum class ObjectSet { Covering, Blended, All };
+    void drawAllObjects(bool aov, ObjectSet set, const Scene& scene, const glm::vec3& eye,
+                        const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum);
 
     // The outline pass (outline_pass.cpp).
     // The highlighted object's outline (setHighlightedObject), after everything else so nothing

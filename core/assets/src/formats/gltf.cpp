@@ -430,11 +430,9 @@ public:
                 l.coatRoughness = unit(number("clearcoatRoughnessFactor", 0.0));
             }
             if (g.alphaMode == "MASK") l.maps.alphaMode = AlphaMode::Mask;
-            else if (g.alphaMode == "BLEND") {
-                l.maps.alphaMode = AlphaMode::Blend;
-                warn(at + " is alpha-blended; it is drawn opaque (blending is not drawn yet)");
-            }
+            else if (g.alphaMode == "BLEND") l.maps.alphaMode = AlphaMode::Blend;
             l.maps.alphaCutoff = unit(g.alphaCutoff);
+            l.maps.doubleSided = g.doubleSided;
             asset_.materials.push_back(std::move(out));
         }
     }

@@ -50,8 +50,9 @@ struct TextureRef {
     bool operator==(const TextureRef&) const = default;
 };
 
-// How a material's alpha (base colour factor × texture alpha) cuts it: glTF's alphaMode.
-// Blend is drawn as Opaque (no sorting of transparent layers yet); the importer says so.
+// How a material's alpha (base colour factor × texture alpha) cuts it: glTF's alphaMode. Blend
+// is drawn over what is behind it (the renderer draws blended objects after the opaque ones and
+// the background, farthest first, without writing depth; docs/assets.md).
 enum class AlphaMode { Opaque, Mask, Blend };
 const char* alphaModeName(AlphaMode mode);  // "opaque", "mask", "blend"
 bool parseAlphaMode(const std::string& text, AlphaMode& out);
@@ -76,6 +77,9 @@ struct MaterialMaps {
     float baseAlpha = 1.0f;
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
+    // glTF's doubleSided: false draws only the faces whose front (counter-clockwise) faces the
+    // viewer. True by default, as every mesh format but glTF means it (open meshes show inside).
+    bool doubleSided = true;
 
     bool anyTexture() const;
     // Whether drawing needs the maps at all: a texture, emission, or an alpha cut (the renderer
