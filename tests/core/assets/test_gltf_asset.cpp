@@ -394,19 +394,24 @@ TEST(GltfMaterials, EmissiveWithoutStrengthIsTheFactor) {
     EXPECT_EQ(asset.materials[0].material.layers.maps.alphaMode, AlphaMode::Opaque);
 }
 
-TEST(GltfMaterials, BlendIsKeptWithAWarningNamingTheMaterial) {
+// BLEND and doubleSided are read as the file says (drawn as blending and one-sided; the pictures:
+// tests/app/cli/test_gltf_conformance.cpp), with no warning; glTF's doubleSided defaults to false.
+TEST(GltfMaterials, BlendAndDoubleSidedAreReadWithoutAWarning) {
     GltfWriter w;
-    tinygltf::Material m = pbrMaterial("Glass", {1, 1, 1, 0.5}, 0, 0.1);
-    m.alphaMode = "BLEND";
-    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(m))));
+    tinygltf::Material glass = pbrMaterial("Glass", {1, 1, 1, 0.5}, 0, 0.1);
+    glass.alphaMode = "BLEND";
+    glass.doubleSided = true;
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(glass))));
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(pbrMaterial("Plain", {1, 1, 1, 1}, 0, 0.5)))));
     const Asset asset = loadGlb(w, "models/glass.glb");
-    ASSERT_EQ(asset.materials.size(), 1u);
-    EXPECT_EQ(asset.materials[0].material.layers.maps.alphaMode, AlphaMode::Blend);
-    EXPECT_FLOAT_EQ(asset.materials[0].material.layers.maps.baseAlpha, 0.5f);
-    ASSERT_EQ(asset.warnings.size(), 1u);
-    EXPECT_CONTAINS(asset.warnings[0], "models/glass.glb");
-    EXPECT_CONTAINS(asset.warnings[0], "material 0");
-    EXPECT_CONTAINS(asset.warnings[0], "blend");
+    ASSERT_EQ(asset.materials.size(), 2u);
+    const MaterialMaps& blended = asset.materials[0].material.layers.maps;
+    EXPECT_EQ(blended.alphaMode, AlphaMode::Blend);
+    EXPECT_FLOAT_EQ(blended.baseAlpha, 0.5f);
+    EXPECT_TRUE(blended.doubleSided);
+    EXPECT_TRUE(blended.inUse()) << "a blended material needs its alpha: the maps' program";
+    EXPECT_FALSE(asset.materials[1].material.layers.maps.doubleSided) << "glTF's default";
+    EXPECT_TRUE(asset.warnings.empty()) << asset.warnings.front();
 }
 
 TEST(GltfMaterials, ClearcoatGivesTheCoatLayer) {
@@ -771,6 +776,20 @@ TEST(GltfHostile, RequiredUnknownExtensionIsRefusedByName) {
     const Asset asset = loadGlb(used);
     ASSERT_EQ(asset.warnings.size(), 1u);
     EXPECT_CONTAINS(asset.warnings[0], "EXT_mipgloss_imaginary");
+}
+
+// A Draco-compressed file: its primitive's accessors have no buffer view (the extension holds the
+// data), which tinygltf refuses first ("accessor[0] invalid bufferView"). The refusal names the
+// extension instead, from a .gltf and a .glb alike.
+TEST(GltfHostile, DracoCompressedFileIsRefusedByTheExtensionsName) {
+    GltfWriter w = plainQuad();
+    w.model().extensionsUsed = {"KHR_draco_mesh_compression"};
+    w.model().extensionsRequired = {"KHR_draco_mesh_compression"};
+    for (tinygltf::Accessor& a : w.model().accessors) a.bufferView = -1;
+    EXPECT_CONTAINS(refusal(w), "requires the extension KHR_draco_mesh_compression");
+    const std::string json = w.gltf();
+    EXPECT_CONTAINS(refusal(std::span(reinterpret_cast<const unsigned char*>(json.data()), json.size()), "draco.gltf"),
+                    "requires the extension KHR_draco_mesh_compression");
 }
 
 TEST(GltfHostile, NonFinitePositionIsRefused) {

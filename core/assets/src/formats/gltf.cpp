@@ -29,6 +29,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
 
 namespace fs = std::filesystem;
 
@@ -150,6 +151,35 @@ std::string glbContainerProblem(std::span<const unsigned char> bytes) {
     return {};
 }
 
+// The names in the JSON's "extensionsRequired" array, read before tinygltf parses the file: a file
+// that requires an extension we do not read (Draco, meshopt) is refused by that name, where
+// tinygltf would first fail on what the extension replaces ("accessor[0] invalid bufferView").
+// A plain scan, not a parse: it only decides which refusal to give.
+std::vector<std::string> requiredExtensions(std::string_view json) {
+    std::vector<std::string> names;
+    const std::size_t key = json.find("\"extensionsRequired\"");
+    if (key == std::string_view::npos) return names;
+    std::size_t at = json.find_first_not_of(" \t\r\n", key + 20);
+    if (at == std::string_view::npos || json[at] != ':') return names;
+    at = json.find_first_not_of(" \t\r\n", at + 1);
+    if (at == std::string_view::npos || json[at] != '[') return names;
+    const std::size_t end = json.find(']', at);
+    if (end == std::string_view::npos) return names;
+    for (std::size_t open = json.find('"', at); open < end; open = json.find('"', open)) {
+        const std::size_t close = json.find('"', open + 1);
+        if (close == std::string_view::npos || close > end || close - open > 256) break;
+        names.emplace_back(json.substr(open + 1, close - open - 1));
+        open = close + 1;
+    }
+    return names;
+}
+
+// The JSON text of a .gltf, or of a .glb's first chunk (its length checked by glbContainerProblem).
+std::string_view jsonOf(std::span<const unsigned char> bytes, bool binary) {
+    if (!binary) return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+    return {reinterpret_cast<const char*>(bytes.data()) + 20, std::min<std::size_t>(readU32(bytes, 12), bytes.size() - 20)};
+}
+
 tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path& file, FileAccess access) {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
@@ -161,9 +191,13 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
     const auto length = static_cast<unsigned>(bytes.size());
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     bool ok = false;
-    if (binary) {
+    if (binary)
         if (const std::string problem = glbContainerProblem(bytes); !problem.empty())
             throw AssetError(file, "not a readable GLB file: " + problem);
+    for (const std::string& e : requiredExtensions(jsonOf(bytes, binary)))
+        if (!kSupportedExtensions.count(e))
+            throw AssetError(file, "requires the extension " + e + ", which mipgloss does not read");
+    if (binary) {
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
     } else {
         ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length,
