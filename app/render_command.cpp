@@ -56,7 +56,7 @@ const char* const kRenderUsage = R"(
                   [--lambda L | --exponent N] [--mode reflect|normal]
                   [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
                   [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
-                  [--exposure EV] [--tonemap linear|reinhard|aces] [--background-lambda L]
+                  [--exposure EV] [--tonemap linear|reinhard|aces|pbr-neutral|agx] [--background-lambda L]
                   [--no-background] [--background R,G,B] [--env-rotation DEG]
                   [--yaw DEG] [--pitch DEG] [--camera NAME|INDEX] [--samples N] [--no-settle | --no-stack] [--quiet]
                   [--spin DEG] [--turntable N] [--turntable-spin object|environment]

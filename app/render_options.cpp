@@ -33,7 +33,7 @@ RenderOptions parseRenderOptions(Args args) {
         else if (a == "--builder" || a == "--method") o.builder = parseChoice(a, value(), kBuilders, builderName);
         else if (a == "--mode") o.mode = parseMode(a, value());
         else if (a == "--tonemap")
-            o.toneMap = parseChoice<ToneMap>(a, value(), {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces}, toneMapName);
+            o.toneMap = parseChoice<ToneMap>(a, value(), {kAllToneMaps.begin(), kAllToneMaps.end()}, toneMapName);
         else if (a == "--size") parseSize(a, value(), o.width, o.height);
         else if (a == "--spin") o.spin = parseFloat(a, value(), -36000.0f, 36000.0f);
         else if (a == "--turntable") o.turntable = parseWholeNumber(a, value(), 1, 3600);

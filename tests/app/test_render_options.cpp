@@ -101,7 +101,14 @@ TEST(RenderOptions, BadValuesAreRefusedInTheirExactWords) {
               "--builder is phong, box, paper or reference, got 'sideways'");
     EXPECT_EQ(refusal({"--compare-builder", "sideways", "--out", "a.png"}),
               "--compare-builder is phong, box, paper or reference, got 'sideways'");
-    EXPECT_EQ(refusal({"--tonemap", "filmic", "--out", "a.png"}), "--tonemap is linear, reinhard or aces, got 'filmic'");
+    EXPECT_EQ(refusal({"--tonemap", "filmic", "--out", "a.png"}),
+              "--tonemap is linear, reinhard, aces, pbr-neutral or agx, got 'filmic'");
+    EXPECT_EQ(refusal({"--background", "2,0,0", "--out", "a.png"}),
+              "--background takes a colour as the screen shows it, each of R,G,B in [0, 1]");
+    EXPECT_EQ(refusal({"--camera", "camera0", "--out", "a.png"}),
+              "--camera NAME|INDEX looks through a camera of a --mesh glTF file");
+    EXPECT_EQ(refusal({"--mesh", "a.gltf", "--camera", "0", "--yaw", "10", "--out", "a.png"}),
+              "--camera and --yaw/--pitch do not go together (whose view?)");
     EXPECT_EQ(refusal({"--mode", "refract", "--out", "a.png"}), "--mode is reflect or normal, got 'refract'");
     EXPECT_EQ(refusal({"--turntable-spin", "camera", "--out", "a.png"}),
               "--turntable-spin is object or environment, got 'camera'");

@@ -64,6 +64,8 @@ std::string shaderDefines() {
     define("TONE_MAP_LINEAR", static_cast<int>(ToneMap::Linear));
     define("TONE_MAP_REINHARD", static_cast<int>(ToneMap::Reinhard));
     define("TONE_MAP_ACES", static_cast<int>(ToneMap::Aces));
+    define("TONE_MAP_PBR_NEUTRAL", static_cast<int>(ToneMap::PbrNeutral));
+    define("TONE_MAP_AGX", static_cast<int>(ToneMap::Agx));
     // The GGX albedo table (ggx_sampling.h, layered.glsl) and the lookups' lobes.
     define("GGX_ROUGHNESS_STEPS", GgxAlbedoTable::kRoughnessSteps);
     define("GGX_COS_STEPS", GgxAlbedoTable::kCosSteps);

@@ -122,12 +122,14 @@ const char* toneMapName(ToneMap map) {
         case ToneMap::Linear: return "linear";
         case ToneMap::Reinhard: return "reinhard";
         case ToneMap::Aces: return "aces";
+        case ToneMap::PbrNeutral: return "pbr-neutral";
+        case ToneMap::Agx: return "agx";
     }
     return "aces";
 }
 
 bool parseToneMap(const std::string& text, ToneMap& out) {
-    for (ToneMap m : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
+    for (ToneMap m : kAllToneMaps)
         if (text == toneMapName(m)) {
             out = m;
             return true;

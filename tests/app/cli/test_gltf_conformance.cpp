@@ -87,11 +87,11 @@ struct Rendered {
 };
 
 Rendered render(const fs::path& gltf, const fs::path& environment, const std::string& camera, const std::string& backdrop,
-                const fs::path& out) {
+                const fs::path& out, const std::string& toneMap = "linear") {
     Rendered r;
     r.result = runCli({"render", "--mesh", q(gltf), "--camera", QString::fromStdString(camera), "--env", q(environment),
-                       "--background", QString::fromStdString(backdrop), "--tonemap", "linear", "--size", "96x96",
-                       "--out", q(out)});
+                       "--background", QString::fromStdString(backdrop), "--tonemap", QString::fromStdString(toneMap),
+                       "--size", "96x96", "--out", q(out)});
     r.image = QImage(q(out));
     return r;
 }
@@ -169,6 +169,39 @@ TEST(GltfConformance, TheFilesCameraIsLookedThroughWithItsRoll) {
     EXPECT_NE(missing.result.err.find("halves.gltf"), std::string::npos) << missing.result.err;
     EXPECT_NE(missing.result.err.find("\"orbit\""), std::string::npos) << missing.result.err;
     EXPECT_NE(missing.result.err.find("1 \"rolled\""), std::string::npos) << missing.result.err;
+}
+
+// Khronos PBR Neutral, from its definition (KhronosGroup/ToneMapping): a grey of 0.5 is below the
+// knee (0.76), so only the black offset 0.04 moves it: 0.46; a grey of 2 loses the offset (1.96),
+// then its peak is compressed to 1 − 0.24²/(1.96 + 0.24 − 0.76) = 0.96 (a grey stays grey). AgX:
+// greys 0.05, 0.5, 2 and 16 come out rising, all below white, and 16 is not clipped to 1.
+TEST(GltfConformance, PbrNeutralAndAgxToneMapsGreysAsTheirDefinitionsSay) {
+    test::TempDir dir;
+    const fs::path environment = blackEnvironment(dir.path());
+    const float greys[] = {0.05f, 0.5f, 2.0f, 16.0f};
+    test::GltfWriter w;
+    for (int i = 0; i < 4; ++i) {
+        const float x0 = -0.5f + 0.25f * static_cast<float>(i);
+        w.addToScene(w.addNode(w.addMesh(quad(x0, x0 + 0.25f, 0.5f, 0.0f),
+                                         w.addMaterial(emitter("Grey " + std::to_string(i), glm::vec3(greys[i]))))));
+    }
+    addCamera(w, "front");
+    w.writeGltf(dir / "greys.gltf");
+    const int columns[] = {29, 42, 54, 67};  // each strip's middle: x at 48 + 48·x/0.928 (the half-height in view)
+    const Rendered neutral = render(dir / "greys.gltf", environment, "front", "0,0,0", dir / "neutral.png", "pbr-neutral");
+    ASSERT_EQ(neutral.result.exitCode, 0) << neutral.result.err;
+    expectPixel(neutral.image, columns[1], 48, glm::vec3(0.46f), "PBR Neutral of 0.5");
+    expectPixel(neutral.image, columns[2], 48, glm::vec3(0.96f), "PBR Neutral of 2");
+    const Rendered agx = render(dir / "greys.gltf", environment, "front", "0,0,0", dir / "agx.png", "agx");
+    ASSERT_EQ(agx.result.exitCode, 0) << agx.result.err;
+    int previous = -1;
+    for (int i = 0; i < 4; ++i) {
+        const QColor c = agx.image.pixelColor(columns[i], 48);
+        EXPECT_GT(c.green(), previous) << "AgX of " << greys[i] << " rises";
+        EXPECT_LE(std::abs(c.red() - c.green()) + std::abs(c.blue() - c.green()), 2) << "a grey stays grey";
+        previous = c.green();
+    }
+    EXPECT_LT(previous, 255) << "AgX keeps 16 below white";
 }
 
 }  // namespace

@@ -168,8 +168,10 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     toneMap_ = new QComboBox(this);
     toneMap_->setObjectName(QStringLiteral("toneMapCombo"));
     toneMap_->setToolTip(tr("How light brighter than the screen's white is shown: linear clips it, "
-                            "Reinhard and ACES (film-like) roll it off smoothly"));
-    for (ToneMap map : {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces})
+                            "Reinhard and ACES (film-like) roll it off smoothly, PBR Neutral (Khronos, the "
+                            "glTF Sample Viewer's) keeps base colours as authored, AgX (Blender's) "
+                            "desaturates highlights as film does"));
+    for (ToneMap map : kAllToneMaps)
         toneMap_->addItem(QString::fromLatin1(toneMapName(map)), static_cast<int>(map));
     connect(toneMap_, &QComboBox::currentIndexChanged, this, [this](int) {
         const auto map = static_cast<ToneMap>(toneMap_->currentData().toInt());

@@ -16,6 +16,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -29,8 +30,14 @@ enum class LookupMode { Reflect, Normal };
 const char* lookupModeName(LookupMode mode);  // "reflect", "normal"
 bool parseLookupMode(const std::string& text, LookupMode& out);
 
-enum class ToneMap { Linear, Reinhard, Aces };
-const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces"
+// How the picture's linear colour becomes the screen's (tonemap.frag): linear clips at 1 (no tone
+// mapping: the 3D Commerce certification's), Reinhard x/(1 + x) per channel, ACES (Narkowicz's
+// fit), Khronos PBR Neutral (keeps base colours as authored below its knee; the glTF Sample
+// Viewer's) and AgX (Sobotka's, in Wrensch's polynomial fit; Blender's default).
+enum class ToneMap { Linear, Reinhard, Aces, PbrNeutral, Agx };
+inline constexpr std::array<ToneMap, 5> kAllToneMaps = {ToneMap::Linear, ToneMap::Reinhard, ToneMap::Aces,
+                                                       ToneMap::PbrNeutral, ToneMap::Agx};
+const char* toneMapName(ToneMap map);  // "linear", "reinhard", "aces", "pbr-neutral", "agx"
 bool parseToneMap(const std::string& text, ToneMap& out);
 
 
