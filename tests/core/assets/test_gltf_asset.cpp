@@ -22,6 +22,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 #include <vector>
 
@@ -427,6 +428,40 @@ TEST(GltfMaterials, ClearcoatGivesTheCoatLayer) {
     ASSERT_EQ(asset.materials.size(), 1u);
     EXPECT_FLOAT_EQ(asset.materials[0].material.layers.coat, 0.75f);
     EXPECT_FLOAT_EQ(asset.materials[0].material.layers.coatRoughness, 0.125f);
+}
+
+// The coat's textures are not dropped in silence: one warning names each, the file and the material.
+TEST(GltfMaterials, ClearcoatTexturesAreNamedInAWarning) {
+    GltfWriter w;
+    tinygltf::Material m = pbrMaterial("Car paint", {0.6, 0.05, 0.02, 1}, 0, 0.45);
+    const tinygltf::Value texture(tinygltf::Value::Object{{"index", tinygltf::Value(0)}});
+    m.extensions["KHR_materials_clearcoat"] = tinygltf::Value(tinygltf::Value::Object{
+        {"clearcoatFactor", tinygltf::Value(1.0)}, {"clearcoatTexture", texture}, {"clearcoatNormalTexture", texture}});
+    w.model().extensionsUsed = {"KHR_materials_clearcoat"};
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(m))));
+    const Asset asset = loadGlb(w, "models/car.glb");
+    ASSERT_EQ(asset.warnings.size(), 2u);
+    EXPECT_CONTAINS(asset.warnings[0], "models/car.glb");
+    EXPECT_CONTAINS(asset.warnings[0], "material 0");
+    EXPECT_CONTAINS(asset.warnings[0], "clearcoatTexture");
+    EXPECT_CONTAINS(asset.warnings[1], "clearcoatNormalTexture");
+}
+
+// KHR_materials_ior: F0 = ((ior − 1)/(ior + 1))², so 1.5 is glTF's 0.04 and 2 is 1/9; an ior below
+// 1 is a warning and 1.5 stays.
+TEST(GltfMaterials, IorSetsTheDielectricsF0) {
+    for (const auto& [ior, f0, warned] : {std::tuple{1.5, 0.04f, false}, std::tuple{2.0, 1.0f / 9.0f, false},
+                                          std::tuple{1.0, 0.0f, false}, std::tuple{0.5, 0.04f, true}}) {
+        GltfWriter w;
+        tinygltf::Material m = pbrMaterial("Glass", {1, 1, 1, 1}, 0, 0.1);
+        m.extensions["KHR_materials_ior"] = tinygltf::Value(tinygltf::Value::Object{{"ior", tinygltf::Value(ior)}});
+        w.model().extensionsUsed = {"KHR_materials_ior"};
+        w.model().extensionsRequired = {"KHR_materials_ior"};
+        w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(m))));
+        const Asset asset = loadGlb(w);
+        EXPECT_NEAR(asset.materials.at(0).material.layers.specular, f0, 1e-6f) << "ior " << ior;
+        EXPECT_EQ(asset.warnings.size(), warned ? 1u : 0u) << "ior " << ior;
+    }
 }
 
 TEST(GltfMaterials, ExternalImagesAreFilesBesideTheGltfWithTheUriDecoded) {

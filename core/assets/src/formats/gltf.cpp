@@ -41,7 +41,8 @@ namespace {
 const std::set<std::string> kSupportedExtensions = {
     "KHR_mesh_quantization",           // integer attributes: read through the accessor's type
     "KHR_materials_emissive_strength", // multiplies emissiveFactor
-    "KHR_materials_clearcoat",         // the coat layer
+    "KHR_materials_clearcoat",         // the coat layer (its factors; its textures are named in a warning)
+    "KHR_materials_ior",               // the dielectric's F0
 };
 
 // The most nodes deep a hierarchy may be (a cycle or a corrupt file beyond it).
@@ -462,6 +463,24 @@ public:
                 };
                 l.coat = unit(number("clearcoatFactor", 0.0));
                 l.coatRoughness = unit(number("clearcoatRoughnessFactor", 0.0));
+                // The coat's textures multiply the factors per texel; the layered model holds one
+                // coat per material, so they are named rather than dropped in silence.
+                for (const char* map : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
+                    if (it->second.Has(map))
+                        warn(at + ": KHR_materials_clearcoat's " + map + " is not read (the coat is its factor alone)");
+            }
+            // KHR_materials_ior: the dielectric's F0 = ((ior − 1)/(ior + 1))² (1.5 gives glTF's 0.04);
+            // it carries into the picture and the truth through Layers::specular (gltf_brdf.h).
+            if (auto it = g.extensions.find("KHR_materials_ior"); it != g.extensions.end() && it->second.Has("ior")) {
+                const tinygltf::Value& v = it->second.Get("ior");
+                const double ior = v.IsNumber() ? v.GetNumberAsDouble() : 1.5;
+                if (std::isfinite(ior) && ior >= 1.0 && ior <= 10.0) {
+                    const double r = (ior - 1.0) / (ior + 1.0);
+                    l.specular = static_cast<float>(r * r);
+                } else {
+                    warn(at + ": KHR_materials_ior's ior " + std::to_string(ior) +
+                         " is not in [1, 10]; glTF's 1.5 is used");
+                }
             }
             if (g.alphaMode == "MASK") l.maps.alphaMode = AlphaMode::Mask;
             else if (g.alphaMode == "BLEND") l.maps.alphaMode = AlphaMode::Blend;
