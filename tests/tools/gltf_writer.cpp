@@ -170,6 +170,13 @@ int GltfWriter::addMesh(const Mesh& mesh, int material, bool withNormals) {
         primitive.attributes["TANGENT"] = addAccessor(mesh.tangents.data(), mesh.tangents.size() * 16,
                                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
                                                       mesh.tangents.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (!mesh.uvs1.empty())
+        primitive.attributes["TEXCOORD_1"] = addAccessor(mesh.uvs1.data(), mesh.uvs1.size() * 8, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                                         TINYGLTF_TYPE_VEC2, mesh.uvs1.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (!mesh.colours.empty())
+        primitive.attributes["COLOR_0"] = addAccessor(mesh.colours.data(), mesh.colours.size() * 16,
+                                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
+                                                      mesh.colours.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
     primitive.indices = addAccessor(mesh.indices.data(), mesh.indices.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
                                     TINYGLTF_TYPE_SCALAR, mesh.indices.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     tinygltf::Mesh m;

@@ -42,7 +42,8 @@ public:
     int addImage(const std::vector<unsigned char>& png, const std::string& uri = {});
     int addTexture(int image);
     int addMaterial(const tinygltf::Material& material);
-    // The mesh's positions, normals (unless `withNormals` is false), UVs, tangents, indices.
+    // The mesh's positions, normals (unless `withNormals` is false), UVs (both sets), tangents,
+    // vertex colours, indices.
     int addMesh(const Mesh& mesh, int material, bool withNormals = true);
     int addNode(int mesh, const std::vector<double>& translation = {}, const std::vector<double>& scale = {},
                 const std::vector<double>& rotation = {});

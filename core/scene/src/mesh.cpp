@@ -20,6 +20,8 @@ bool Mesh::isValid() const {
     if (normals.size() != positions.size() || indices.size() % 3 != 0) return false;
     if (!uvs.empty() && uvs.size() != positions.size()) return false;
     if (!tangents.empty() && tangents.size() != positions.size()) return false;
+    if (!uvs1.empty() && uvs1.size() != positions.size()) return false;
+    if (!colours.empty() && colours.size() != positions.size()) return false;
     for (const glm::vec2& t : uvs)
         if (!std::isfinite(t.x) || !std::isfinite(t.y)) return false;
     for (std::uint32_t i : indices)
@@ -191,6 +193,8 @@ std::uint32_t duplicateVertex(Mesh& mesh, std::uint32_t vertex) {
     copy(mesh.normals);
     copy(mesh.uvs);
     copy(mesh.tangents);
+    copy(mesh.uvs1);
+    copy(mesh.colours);
     return static_cast<std::uint32_t>(mesh.positions.size() - 1);
 }
 

@@ -117,6 +117,34 @@ std::vector<TextureRef> MaterialMaps::textures() const {
     return out;
 }
 
+const char* textureWrapName(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::Repeat: return "repeat";
+        case TextureWrap::ClampToEdge: return "clamp";
+        case TextureWrap::MirroredRepeat: return "mirror";
+    }
+    return "repeat";
+}
+
+bool parseTextureWrap(const std::string& text, TextureWrap& out) {
+    for (TextureWrap w : {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat})
+        if (text == textureWrapName(w)) {
+            out = w;
+            return true;
+        }
+    return false;
+}
+
+glm::mat3 TextureSampling::uvTransform() const {
+    // Column-major, as KHR_texture_transform writes T · R · S (its R turns +u toward −v: the
+    // image's v runs down, so that is counter-clockwise as the image is seen).
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    const glm::mat3 translate(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+    const glm::mat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1);
+    const glm::mat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    return translate * rotate * scaling;
+}
+
 const char* toneMapName(ToneMap map) {
     switch (map) {
         case ToneMap::Linear: return "linear";

@@ -16,6 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -68,16 +69,17 @@ void addCamera(test::GltfWriter& w, const std::string& name, const glm::quat& ro
     w.addToScene(static_cast<int>(w.model().nodes.size()) - 1);
 }
 
-// An 8 × 4 lat-long of zeros: nothing to reflect.
-fs::path blackEnvironment(const fs::path& folder) {
-    const fs::path file = folder / "black.exr";
+// An 8 × 4 lat-long of one radiance: zeros (nothing to reflect) or ones (a white furnace).
+fs::path uniformEnvironment(const fs::path& folder, float radiance) {
+    const fs::path file = folder / (radiance > 0.0f ? "white.exr" : "black.exr");
     auto out = OIIO::ImageOutput::create(file.string());
     const OIIO::ImageSpec spec(8, 4, 3, OIIO::TypeDesc::FLOAT);
-    const std::vector<float> zeros(8 * 4 * 3, 0.0f);
-    EXPECT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, zeros.data()) &&
+    const std::vector<float> texels(8 * 4 * 3, radiance);
+    EXPECT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) &&
                 out->close());
     return file;
 }
+fs::path blackEnvironment(const fs::path& folder) { return uniformEnvironment(folder, 0.0f); }
 
 float srgbEncode(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
 
@@ -169,6 +171,82 @@ TEST(GltfConformance, TheFilesCameraIsLookedThroughWithItsRoll) {
     EXPECT_NE(missing.result.err.find("halves.gltf"), std::string::npos) << missing.result.err;
     EXPECT_NE(missing.result.err.find("\"orbit\""), std::string::npos) << missing.result.err;
     EXPECT_NE(missing.result.err.find("1 \"rolled\""), std::string::npos) << missing.result.err;
+}
+
+// Samplers' wrap modes, read where the UVs leave [0, 1]: a quad whose u runs from −1 to 2 emits a
+// 2 × 1 texture (red texel, green texel; nearest magnification). At u = −0.75, −0.25 and 1.75
+// repeat reads red, green, green; clamp-to-edge red, red, green; mirrored repeat green, red, red.
+// The same quad reading UV set 1 (= set 0) through KHR_texture_transform's offset (0.5, 0) under
+// repeat shows repeat's colours swapped.
+TEST(GltfConformance, WrapModesUvSetsAndTextureTransformsReadTheTexelsTheSpecificationSays) {
+    test::TempDir dir;
+    const fs::path environment = blackEnvironment(dir.path());
+    const test::TestImage redGreen = test::makeImage(2, 1, 3, [](int x, int) -> std::vector<std::uint8_t> {
+        return x == 0 ? std::vector<std::uint8_t>{255, 0, 0} : std::vector<std::uint8_t>{0, 255, 0};
+    });
+    Mesh strip = quad(-0.5f, 0.5f, 0.5f, 0.0f);
+    for (std::size_t i = 0; i < strip.vertexCount(); ++i)
+        strip.uvs.emplace_back(strip.positions[i].x < 0.0f ? -1.0f : 2.0f, strip.positions[i].y > 0.0f ? 0.0f : 1.0f);
+    strip.uvs1 = strip.uvs;
+    const int columns[] = {26, 35, 70};  // u = −0.75, −0.25, 1.75: x = (u + 1)/3 − 0.5, column 48 + 48·x/0.928
+    const glm::vec3 red(1, 0, 0), green(0, 1, 0);
+    struct Case {
+        const char* name;
+        int wrap;
+        bool shifted;  // UV set 1 through KHR_texture_transform's offset (0.5, 0)
+        glm::vec3 expected[3];
+    };
+    const Case cases[] = {{"repeat", TINYGLTF_TEXTURE_WRAP_REPEAT, false, {red, green, green}},
+                          {"clamp", TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE, false, {red, red, green}},
+                          {"mirror", TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT, false, {green, red, red}},
+                          {"shifted", TINYGLTF_TEXTURE_WRAP_REPEAT, true, {green, red, red}}};
+    for (const Case& c : cases) {
+        test::GltfWriter w;
+        const int texture = w.addTexture(w.addImage(test::encodePng(redGreen)));
+        tinygltf::Sampler sampler;
+        sampler.wrapS = sampler.wrapT = c.wrap;
+        sampler.magFilter = TINYGLTF_TEXTURE_FILTER_NEAREST;
+        w.model().samplers = {sampler};
+        w.model().textures[static_cast<std::size_t>(texture)].sampler = 0;
+        tinygltf::Material m = emitter("Strip", {1, 1, 1});
+        m.emissiveTexture.index = texture;
+        if (c.shifted) {
+            m.emissiveTexture.texCoord = 1;
+            m.emissiveTexture.extensions["KHR_texture_transform"] = tinygltf::Value(tinygltf::Value::Object{
+                {"offset", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.5), tinygltf::Value(0.0)})}});
+            w.model().extensionsUsed = {"KHR_texture_transform"};
+        }
+        w.addToScene(w.addNode(w.addMesh(strip, w.addMaterial(m))));
+        addCamera(w, "front");
+        const fs::path file = dir / (std::string(c.name) + ".gltf");
+        w.writeGltf(file);
+        const Rendered r = render(file, environment, "front", "0,0,0", dir / (std::string(c.name) + ".png"));
+        ASSERT_EQ(r.result.exitCode, 0) << r.result.err;
+        for (int i = 0; i < 3; ++i) expectPixel(r.image, columns[i], 48, c.expected[i], c.name);
+    }
+}
+
+// COLOR_0 multiplies the base colour: a white dielectric in a white furnace with red vertex colours
+// shows red (its diffuse), grey specular alike in every channel; without them it is grey.
+TEST(GltfConformance, VertexColoursMultiplyTheBaseColour) {
+    test::TempDir dir;
+    const fs::path environment = uniformEnvironment(dir.path(), 1.0f);
+    for (const bool coloured : {true, false}) {
+        test::GltfWriter w;
+        Mesh q = quad(-0.5f, 0.5f, 0.5f, 0.0f);
+        if (coloured) q.colours.assign(q.vertexCount(), glm::vec4(1, 0, 0, 1));
+        w.addToScene(w.addNode(w.addMesh(q, w.addMaterial(test::pbrMaterial("White", {1, 1, 1, 1}, 0.0, 1.0)))));
+        addCamera(w, "front");
+        const std::string name = coloured ? "coloured" : "plain";
+        w.writeGltf(dir / (name + ".gltf"));
+        const Rendered r = render(dir / (name + ".gltf"), environment, "front", "0,0,0", dir / (name + ".png"));
+        ASSERT_EQ(r.result.exitCode, 0) << r.result.err;
+        const QColor c = r.image.pixelColor(48, 48);
+        std::printf("[ GltfConformance ] %s quad in a white furnace: %d %d %d\n", name.c_str(), c.red(), c.green(), c.blue());
+        EXPECT_LE(std::abs(c.green() - c.blue()), 2) << name;
+        if (coloured) EXPECT_GT(c.red() - c.green(), 100) << "the red vertex colour";
+        else EXPECT_LE(std::abs(c.red() - c.green()), 2) << "no vertex colour: grey";
+    }
 }
 
 // Khronos PBR Neutral, from its definition (KhronosGroup/ToneMapping): a grey of 0.5 is below the

@@ -430,6 +430,66 @@ TEST(GltfMaterials, ClearcoatGivesTheCoatLayer) {
     EXPECT_FLOAT_EQ(asset.materials[0].material.layers.coatRoughness, 0.125f);
 }
 
+// How each map is read: its texture's sampler (wrap modes, nearest filters), its UV set, and
+// KHR_texture_transform (whose texCoord overrides the textureInfo's); TEXCOORD_1 and COLOR_0 are
+// read into the mesh. The transform is the extension's T·R·S: its own example (offset (0, 1),
+// rotation π/2, scale 0.5: "the lower left quadrant, rotated clockwise 90°") takes the UV corners
+// (0, 0), (1, 0), (0, 1), (1, 1) to (0, 1), (0, 0.5), (0.5, 1), (0.5, 0.5).
+TEST(GltfMaterials, SamplersUvSetsTransformsAndVertexColoursAreRead) {
+    GltfWriter w;
+    const int image = w.addImage(encodePng(checker4()));
+    const int clamped = w.addTexture(image);
+    const int mirrored = w.addTexture(image);
+    tinygltf::Sampler clamp, mirror;
+    clamp.wrapS = clamp.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    clamp.magFilter = TINYGLTF_TEXTURE_FILTER_NEAREST;
+    mirror.wrapS = TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+    mirror.minFilter = TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+    w.model().samplers = {clamp, mirror};
+    w.model().textures[static_cast<std::size_t>(clamped)].sampler = 0;
+    w.model().textures[static_cast<std::size_t>(mirrored)].sampler = 1;
+    tinygltf::Material m = pbrMaterial("Sampled", {1, 1, 1, 1}, 0, 0.5, clamped);
+    m.emissiveTexture.index = mirrored;
+    m.emissiveTexture.texCoord = 1;
+    m.pbrMetallicRoughness.baseColorTexture.extensions["KHR_texture_transform"] = tinygltf::Value(tinygltf::Value::Object{
+        {"offset", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.0), tinygltf::Value(1.0)})},
+        {"rotation", tinygltf::Value(1.57079632679)},
+        {"scale", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.5), tinygltf::Value(0.5)})},
+        {"texCoord", tinygltf::Value(1)}});
+    w.model().extensionsUsed = {"KHR_texture_transform"};
+    Mesh quad = texturedQuad();
+    quad.uvs1 = quad.uvs;
+    quad.colours.assign(quad.vertexCount(), glm::vec4(0.25f, 0.5f, 1.0f, 0.75f));
+    w.addToScene(w.addNode(w.addMesh(quad, w.addMaterial(m))));
+    const Asset asset = loadGlb(w);
+    EXPECT_TRUE(asset.warnings.empty()) << asset.warnings.front();
+    const MaterialMaps& maps = asset.materials.at(0).material.layers.maps;
+    const TextureSampling& base = maps.samplingOf(MapSlot::BaseColor);
+    EXPECT_EQ(base.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(base.wrapT, TextureWrap::ClampToEdge);
+    EXPECT_TRUE(base.nearestMagnify);
+    EXPECT_FALSE(base.nearestMinify);
+    EXPECT_EQ(base.texCoord, 1) << "KHR_texture_transform's texCoord wins";
+    const glm::mat3 t = base.uvTransform();
+    for (const auto& [from, to] : {std::pair{glm::vec2(0, 0), glm::vec2(0, 1)}, std::pair{glm::vec2(1, 0), glm::vec2(0, 0.5f)},
+                                   std::pair{glm::vec2(0, 1), glm::vec2(0.5f, 1)}, std::pair{glm::vec2(1, 1), glm::vec2(0.5f, 0.5f)}}) {
+        const glm::vec3 got = t * glm::vec3(from, 1.0f);
+        EXPECT_NEAR(got.x, to.x, 1e-6f) << from.x << ", " << from.y;
+        EXPECT_NEAR(got.y, to.y, 1e-6f) << from.x << ", " << from.y;
+    }
+    const TextureSampling& emissive = maps.samplingOf(MapSlot::Emissive);
+    EXPECT_EQ(emissive.wrapS, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(emissive.wrapT, TextureWrap::Repeat);
+    EXPECT_TRUE(emissive.nearestMinify);
+    EXPECT_EQ(emissive.texCoord, 1);
+    EXPECT_EQ(emissive.uvTransform(), glm::mat3(1.0f));
+    const Mesh& mesh = *asset.parts.at(0).mesh;
+    ASSERT_EQ(mesh.uvs1.size(), mesh.vertexCount());
+    ASSERT_EQ(mesh.colours.size(), mesh.vertexCount());
+    EXPECT_EQ(mesh.colours[2], glm::vec4(0.25f, 0.5f, 1.0f, 0.75f));
+    EXPECT_TRUE(mesh.isValid());
+}
+
 // The coat's textures are not dropped in silence: one warning names each, the file and the material.
 TEST(GltfMaterials, ClearcoatTexturesAreNamedInAWarning) {
     GltfWriter w;

@@ -8,6 +8,7 @@
 
 #include <glm/vector_relational.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -60,6 +61,20 @@ QJsonObject mapsToJson(const MaterialMaps& m, const std::filesystem::path& fileF
     out.insert("alphaMode", alphaModeName(m.alphaMode));
     out.insert("alphaCutoff", m.alphaCutoff);
     out.insert("doubleSided", m.doubleSided);
+    // How each map is read (MapSlot order), written only when one differs from glTF's default.
+    if (std::any_of(m.sampling.begin(), m.sampling.end(), [](const TextureSampling& s) { return s != TextureSampling{}; })) {
+        QJsonArray sampling;
+        for (const TextureSampling& s : m.sampling)
+            sampling.append(QJsonObject{{"texCoord", s.texCoord},
+                                        {"wrapS", textureWrapName(s.wrapS)},
+                                        {"wrapT", textureWrapName(s.wrapT)},
+                                        {"nearestMagnify", s.nearestMagnify},
+                                        {"nearestMinify", s.nearestMinify},
+                                        {"offset", QJsonArray{s.offset.x, s.offset.y}},
+                                        {"scale", QJsonArray{s.scale.x, s.scale.y}},
+                                        {"rotation", s.rotation}});
+        out.insert("sampling", sampling);
+    }
     return out;
 }
 
@@ -281,6 +296,43 @@ MaterialMaps JsonReader::maps(const QJsonObject& o, const std::string& where) co
     if (!parseAlphaMode(mode, m.alphaMode))
         fail("\"" + keyName(where, "alphaMode") + "\" is \"" + mode + "\": it is opaque, mask or blend");
     m.doubleSided = boolean(o, "doubleSided", where, m.doubleSided);
+    if (const QJsonValue v = o.value(QLatin1String("sampling")); !v.isUndefined()) {
+        const std::string at = keyName(where, "sampling");
+        if (!v.isArray() || v.toArray().size() != kMaterialMapCount)
+            fail("\"" + at + "\" must be an array of " + std::to_string(kMaterialMapCount) + " objects, one per map");
+        const QJsonArray a = v.toArray();
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            const std::string item = at + "[" + std::to_string(i) + "]";
+            if (!a.at(i).isObject()) fail("\"" + item + "\" must be an object");
+            const QJsonObject so = a.at(i).toObject();
+            TextureSampling& s = m.sampling[static_cast<std::size_t>(i)];
+            s.texCoord = integer(so, "texCoord", item, 0);
+            if (s.texCoord != 0 && s.texCoord != 1) fail("\"" + keyName(item, "texCoord") + "\" is " + show(s.texCoord) + ": a UV set is 0 or 1");
+            for (const auto& [key, wrap] : {std::pair{"wrapS", &s.wrapS}, std::pair{"wrapT", &s.wrapT}}) {
+                const std::string repeat = textureWrapName(TextureWrap::Repeat);
+                const std::string name = string(so, key, item, &repeat);
+                if (!parseTextureWrap(name, *wrap))
+                    fail("\"" + keyName(item, key) + "\" is \"" + name + "\": it is repeat, clamp or mirror");
+            }
+            s.nearestMagnify = boolean(so, "nearestMagnify", item, false);
+            s.nearestMinify = boolean(so, "nearestMinify", item, false);
+            for (const auto& [key, pair] : {std::pair{"offset", &s.offset}, std::pair{"scale", &s.scale}}) {
+                const QJsonValue pv = so.value(QLatin1String(key));
+                if (pv.isUndefined()) continue;
+                if (!pv.isArray() || pv.toArray().size() != 2) fail("\"" + keyName(item, key) + "\" must be two numbers");
+                for (int c = 0; c < 2; ++c) {
+                    const double d = finite(pv.toArray().at(c), keyName(item, key) + "[" + std::to_string(c) + "]");
+                    if (std::abs(d) > 1e6) fail("\"" + keyName(item, key) + "\" is beyond 1e6");
+                    (*pair)[c] = static_cast<float>(d);
+                }
+            }
+            s.rotation = static_cast<float>(std::remainder(finite(so.value(QLatin1String("rotation")).isUndefined()
+                                                                      ? QJsonValue(0.0)
+                                                                      : so.value(QLatin1String("rotation")),
+                                                                  keyName(item, "rotation")),
+                                                           2.0 * 3.14159265358979323846));
+        }
+    }
     return m;
 }
 

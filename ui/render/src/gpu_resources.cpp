@@ -34,6 +34,30 @@ GLuint Renderer::Impl::sampler(float level) {
     return s;
 }
 
+// The sampler a material map is read with (glTF's sampler: wrap modes, nearest or linear), with
+// the anisotropy every map's texture has; one per distinct combination.
+GLuint Renderer::Impl::mapSampler(const TextureSampling& sampling) {
+    const int key = static_cast<int>(sampling.wrapS) | static_cast<int>(sampling.wrapT) << 2 |
+                    (sampling.nearestMagnify ? 16 : 0) | (sampling.nearestMinify ? 32 : 0);
+    auto it = mapSamplers.find(key);
+    if (it != mapSamplers.end()) return it->second;
+    auto wrap = [](TextureWrap w) {
+        return w == TextureWrap::ClampToEdge ? GL_CLAMP_TO_EDGE : w == TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+    };
+    GLuint s = 0;
+    gl->glGenSamplers(1, &s);
+    gl->glSamplerParameteri(s, GL_TEXTURE_WRAP_S, wrap(sampling.wrapS));
+    gl->glSamplerParameteri(s, GL_TEXTURE_WRAP_T, wrap(sampling.wrapT));
+    gl->glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, sampling.nearestMagnify ? GL_NEAREST : GL_LINEAR);
+    gl->glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, sampling.nearestMinify ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_LINEAR);
+    // Anisotropy only where both filters are linear: llvmpipe's anisotropic sampling blends
+    // texels a nearest filter keeps apart.
+    if (maxAnisotropy > 1.0f && !sampling.nearestMinify && !sampling.nearestMagnify)
+        gl->glSamplerParameterf(s, 0x84FE /* GL_TEXTURE_MAX_ANISOTROPY */, maxAnisotropy);
+    mapSamplers.emplace(key, s);
+    return s;
+}
+
 // The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum, made the
 // first time a layered material is drawn (building the table takes about 0.1 s, which no
 // single-lobe scene pays).
@@ -158,7 +182,9 @@ GpuMesh& Renderer::Impl::gpuMesh(const std::shared_ptr<const Mesh>& mesh) {
     // Position and normal, then the asset's UV and tangent where it has them.
     const bool uvs = mesh->uvs.size() == mesh->positions.size();
     const bool tangents = mesh->tangents.size() == mesh->positions.size();
-    const std::size_t floats = 6 + (uvs ? 2 : 0) + (tangents ? 4 : 0);
+    g.uvs1 = mesh->uvs1.size() == mesh->positions.size();
+    g.colours = mesh->colours.size() == mesh->positions.size();
+    const std::size_t floats = 6 + (uvs ? 2 : 0) + (tangents ? 4 : 0) + (g.uvs1 ? 2 : 0) + (g.colours ? 4 : 0);
     std::vector<float> interleaved;
     interleaved.reserve(mesh->positions.size() * floats);
     for (std::size_t i = 0; i < mesh->positions.size(); ++i) {
@@ -169,6 +195,11 @@ GpuMesh& Renderer::Impl::gpuMesh(const std::shared_ptr<const Mesh>& mesh) {
         if (tangents) {
             const glm::vec4& t = mesh->tangents[i];
             interleaved.insert(interleaved.end(), {t.x, t.y, t.z, t.w});
+        }
+        if (g.uvs1) interleaved.insert(interleaved.end(), {mesh->uvs1[i].x, mesh->uvs1[i].y});
+        if (g.colours) {
+            const glm::vec4& c = mesh->colours[i];
+            interleaved.insert(interleaved.end(), {c.r, c.g, c.b, c.a});
         }
     }
     gl->glGenVertexArrays(1, &g.vao);
@@ -197,6 +228,16 @@ GpuMesh& Renderer::Impl::gpuMesh(const std::shared_ptr<const Mesh>& mesh) {
     if (tangents) {
         gl->glEnableVertexAttribArray(3);
         gl->glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset * sizeof(float)));
+        offset += 4;
+    }
+    if (g.uvs1) {
+        gl->glEnableVertexAttribArray(4);
+        gl->glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset * sizeof(float)));
+        offset += 2;
+    }
+    if (g.colours) {
+        gl->glEnableVertexAttribArray(5);
+        gl->glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset * sizeof(float)));
     }
     gl->glBindVertexArray(0);
     g.indexCount = static_cast<GLsizei>(mesh->indices.size());

@@ -59,13 +59,15 @@ struct Renderer::Impl::MapUniforms {
           occlusionStrength(p.uniformLocation("uOcclusionStrength")),
           emissive(p.uniformLocation("uEmissive")),
           alphaMode(p.uniformLocation("uAlphaMode")),
-          alphaCutoff(p.uniformLocation("uAlphaCutoff")) {
+          alphaCutoff(p.uniformLocation("uAlphaCutoff")),
+          texCoords(p.uniformLocation("uMapTexCoord")),
+          transforms(p.uniformLocation("uMapTransform")) {
         const char* use[kMapCount] = {"uUseBaseColorMap", "uUseMetallicMap", "uUseRoughnessMap",
                                       "uUseNormalMap", "uUseOcclusionMap", "uUseEmissiveMap"};
         for (int i = 0; i < kMapCount; ++i) uses[i] = p.uniformLocation(use[i]);
     }
     int metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
-        normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff;
+        normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff, texCoords, transforms;
     int uses[kMapCount];  // the samplers' units are set once (texture_units.h)
 };
 
@@ -98,7 +100,7 @@ void Renderer::Impl::bindChain(const ObjectLookup& plan, GLuint unit) {
 // the factors. Returns whether the roughness map is read (each fragment its own lobe).
 bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
     const MaterialMaps& m = l.maps;
-    if (!m.inUse()) return false;
+    if (u.baseColor < 0) return false;  // a program without the maps (material_maps.glsl)
     if (whiteTexture == 0) {
         const std::uint8_t white[4] = {255, 255, 255, 255};
         gl->glGenTextures(1, &whiteTexture);
@@ -120,9 +122,18 @@ bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
         const GLuint unit = mapUnit(i);
         gl->glActiveTexture(GL_TEXTURE0 + unit);
         gl->glBindTexture(GL_TEXTURE_2D, used[i] ? texture : whiteTexture);
-        gl->glBindSampler(unit, 0);
+        gl->glBindSampler(unit, used[i] ? mapSampler(m.sampling[static_cast<std::size_t>(i)]) : 0);
         gl->glUniform1i(u.uses[i], used[i] ? 1 : 0);
     }
+    // Each map's UV set and KHR_texture_transform (material_maps.glsl, mapUv).
+    std::array<GLint, kMapCount> texCoords{};
+    std::array<glm::mat3, kMapCount> transforms{};
+    for (int i = 0; i < kMapCount; ++i) {
+        texCoords[static_cast<std::size_t>(i)] = m.sampling[static_cast<std::size_t>(i)].texCoord;
+        transforms[static_cast<std::size_t>(i)] = m.sampling[static_cast<std::size_t>(i)].uvTransform();
+    }
+    gl->glUniform1iv(u.texCoords, kMapCount, texCoords.data());
+    gl->glUniformMatrix3fv(u.transforms, kMapCount, GL_FALSE, glm::value_ptr(transforms[0]));
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glUniform1i(u.metallicChannel, m.metallic.channel);
     gl->glUniform1i(u.roughnessChannel, m.roughness.channel);
@@ -209,6 +220,8 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     const int locLookup = program.uniformLocation("uLookup");
     const int locGrazing = program.uniformLocation("uSharperAtGrazing");
     const int locLambda = program.uniformLocation("uLambda");
+    const int locMeshUv1 = program.uniformLocation("uMeshUv1");
+    const int locMeshColours = program.uniformLocation("uMeshColours");
     const LobeUniforms lobeUniforms{program.uniformLocation("uUseStack"), program.uniformLocation("uExponent")};
     bindStack(program);
     const LayeredUniforms layeredUniforms(program);
@@ -277,6 +290,9 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
         // glTF's doubleSided false: the back faces are not drawn (every other material shows both).
         if (m.layered && !m.layers.maps.doubleSided) gl->glEnable(GL_CULL_FACE);
         else gl->glDisable(GL_CULL_FACE);
+        // A mesh without a second UV set or vertex colours: UV (0, 0) and white (object.vert).
+        gl->glUniform1i(locMeshUv1, mesh.uvs1 ? 1 : 0);
+        gl->glUniform1i(locMeshColours, mesh.colours ? 1 : 0);
         gl->glBindVertexArray(mesh.vao);
         gl->glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         if (aov) continue;
@@ -317,9 +333,9 @@ void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene,
         });
         // In that order, each run of one program drawn together.
         for (std::size_t start = 0; start < chosen.size();) {
-            const ObjectProgram kind = programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(chosen[start])]));
+            const ObjectProgram kind = programOf(scene, scene.objects[static_cast<std::size_t>(chosen[start])]);
             std::size_t end = start + 1;
-            while (end < chosen.size() && programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(chosen[end])])) == kind) ++end;
+            while (end < chosen.size() && programOf(scene, scene.objects[static_cast<std::size_t>(chosen[end])]) == kind) ++end;
             const std::vector<int> run(chosen.begin() + static_cast<std::ptrdiff_t>(start), chosen.begin() + static_cast<std::ptrdiff_t>(end));
             drawObjects(*programFor(kind), scene, run, eye, viewProjection, envRotation, frustum, aov);
             start = end;
@@ -330,7 +346,7 @@ void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene,
     for (const ObjectProgram kind : {ObjectProgram::Single, ObjectProgram::Layered, ObjectProgram::LayeredMaps}) {
         std::vector<int> ofKind;
         for (const int i : chosen)
-            if (programOf(scene.materialOf(scene.objects[static_cast<std::size_t>(i)])) == kind) ofKind.push_back(i);
+            if (programOf(scene, scene.objects[static_cast<std::size_t>(i)]) == kind) ofKind.push_back(i);
         if (!ofKind.empty()) drawObjects(*programFor(kind), scene, ofKind, eye, viewProjection, envRotation, frustum, aov);
     }
 }

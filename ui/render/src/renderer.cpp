@@ -93,6 +93,7 @@ void Renderer::destroy() {
     d.gl->glDeleteTextures(1, &d.whiteTexture);
     d.whiteTexture = 0;
     for (auto& [key, s] : d.samplers) d.gl->glDeleteSamplers(1, &s);
+    for (auto& [key, s] : d.mapSamplers) d.gl->glDeleteSamplers(1, &s);
     d.samplers.clear();
     d.stackEntries.clear();
     d.gl->glDeleteTextures(1, &d.stackTexture);

@@ -28,6 +28,7 @@ struct GpuMesh {
     std::weak_ptr<const Mesh> source;
     GLuint vao = 0, vbo = 0, ibo = 0;
     GLsizei indexCount = 0;
+    bool uvs1 = false, colours = false;  // TEXCOORD_1 and COLOR_0 in the buffer (locations 4, 5)
 };
 
 // World direction -> environment direction: turning the environment by θ about +Y is looking up
@@ -116,6 +117,8 @@ struct Renderer::Impl {
     // GPU resources (gpu_resources.cpp).
     // The sampler reading the chain from `level` on (GL_TEXTURE_MIN_LOD = level).
     GLuint sampler(float level);
+    std::map<int, GLuint> mapSamplers;  // wrap and filter key -> sampler (mapSampler)
+    GLuint mapSampler(const TextureSampling& sampling);
     // The split-sum table (specular.h) as an RG32F texture on TextureUnit::SplitSum, made the first
     // time a layered material is drawn (building the table takes about 0.2 s, which no single-lobe scene pays).
     void bindSplitSum();
@@ -152,11 +155,16 @@ struct Renderer::Impl {
                            const Material& m, bool irradianceReady, int lookups);
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
-    static bool drawsMaps(const Material& m) { return m.layered && m.layers.maps.inUse(); }
-    // Which program draws a material: the single lobe, the glTF material, or it with maps.
+    // Whether an object's layered material is drawn with the maps' program: it has maps, or its
+    // mesh has vertex colours (COLOR_0 multiplies the base colour there).
+    static bool drawsMaps(const SceneObject& o, const Material& m) {
+        return m.layered && (m.layers.maps.inUse() || (o.mesh && !o.mesh->colours.empty()));
+    }
+    // Which program draws an object: the single lobe, the glTF material, or it with maps.
     enum class ObjectProgram { Single, Layered, LayeredMaps };
-    static ObjectProgram programOf(const Material& m) {
-        return !m.layered ? ObjectProgram::Single : drawsMaps(m) ? ObjectProgram::LayeredMaps : ObjectProgram::Layered;
+    static ObjectProgram programOf(const Scene& scene, const SceneObject& o) {
+        const Material& m = scene.materialOf(o);
+        return !m.layered ? ObjectProgram::Single : drawsMaps(o, m) ? ObjectProgram::LayeredMaps : ObjectProgram::Layered;
     }
     static bool isBlended(const Material& m) { return m.layered && m.layers.maps.alphaMode == AlphaMode::Blend; }
     // Draws scene.objects[i] for each i of `objects`, in that order, with `program`.

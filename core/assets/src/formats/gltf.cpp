@@ -43,6 +43,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_emissive_strength", // multiplies emissiveFactor
     "KHR_materials_clearcoat",         // the coat layer (its factors; its textures are named in a warning)
     "KHR_materials_ior",               // the dielectric's F0
+    "KHR_texture_transform",           // each map's UV offset, rotation, scale and set
 };
 
 // The most nodes deep a hierarchy may be (a cycle or a corrupt file beyond it).
@@ -362,7 +363,44 @@ public:
         return out;
     }
 
-    TextureRef texture(int index, int texCoord, const std::string& where, int channel = 0) {
+    // A textureInfo's image, and how it is read into `sampling`: its UV set, its texture's sampler
+    // (wrap modes, nearest or linear filters) and KHR_texture_transform (which may name another
+    // UV set). A UV set other than 0 and 1 is a warning; set 0 is read for it.
+    template <typename Info>
+    TextureRef texture(const Info& info, const std::string& where, TextureSampling& sampling) {
+        sampling = {};
+        if (info.index < 0) return {};
+        int texCoord = info.texCoord;
+        if (auto it = info.extensions.find("KHR_texture_transform"); it != info.extensions.end()) {
+            const tinygltf::Value& t = it->second;
+            auto numbers = [&](const char* key, glm::vec2 fallback) {
+                if (!t.Has(key)) return fallback;
+                const tinygltf::Value& v = t.Get(key);
+                if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber()) {
+                    warn(where + ": KHR_texture_transform's " + key + " is not two numbers; ignored");
+                    return fallback;
+                }
+                const glm::dvec2 d(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
+                if (!std::isfinite(d.x) || !std::isfinite(d.y) || std::abs(d.x) > 1e6 || std::abs(d.y) > 1e6) {
+                    warn(where + ": KHR_texture_transform's " + key + " is not finite or beyond 1e6; ignored");
+                    return fallback;
+                }
+                return glm::vec2(d);
+            };
+            sampling.offset = numbers("offset", sampling.offset);
+            sampling.scale = numbers("scale", sampling.scale);
+            if (t.Has("rotation") && t.Get("rotation").IsNumber()) {
+                const double r = t.Get("rotation").GetNumberAsDouble();
+                if (std::isfinite(r)) sampling.rotation = static_cast<float>(std::remainder(r, 2.0 * 3.14159265358979323846));
+            }
+            if (t.Has("texCoord") && t.Get("texCoord").IsInt()) texCoord = t.Get("texCoord").GetNumberAsInt();
+        }
+        if (texCoord == 0 || texCoord == 1) sampling.texCoord = texCoord;
+        else warn(where + " reads UV set " + std::to_string(texCoord) + "; only sets 0 and 1 are read, and set 0 is used for it");
+        return texture(info.index, where, sampling);
+    }
+
+    TextureRef texture(int index, const std::string& where, TextureSampling& sampling, int channel = 0) {
         if (index < 0) return {};
         if (static_cast<std::size_t>(index) >= model_.textures.size())
             fail(where, "refers to texture " + std::to_string(index) + ", but the file has " +
@@ -375,7 +413,23 @@ public:
         if (static_cast<std::size_t>(t.source) >= model_.images.size())
             fail(element("texture", static_cast<std::size_t>(index), t.name),
                  "refers to image " + std::to_string(t.source) + ", but the file has " + std::to_string(model_.images.size()));
-        if (texCoord != 0) warn(where + " reads UV set " + std::to_string(texCoord) + "; only set 0 is read, and used for it");
+        if (t.sampler >= 0) {
+            if (static_cast<std::size_t>(t.sampler) >= model_.samplers.size())
+                fail(element("texture", static_cast<std::size_t>(index), t.name),
+                     "refers to sampler " + std::to_string(t.sampler) + ", but the file has " + std::to_string(model_.samplers.size()));
+            const tinygltf::Sampler& s = model_.samplers[static_cast<std::size_t>(t.sampler)];
+            auto wrap = [](int mode) {
+                return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::ClampToEdge
+                       : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                                       : TextureWrap::Repeat;
+            };
+            sampling.wrapS = wrap(s.wrapS);
+            sampling.wrapT = wrap(s.wrapT);
+            sampling.nearestMagnify = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+            sampling.nearestMinify = s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                                     s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                                     s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+        }
         const tinygltf::Image& image = model_.images[static_cast<std::size_t>(t.source)];
         TextureRef ref;
         ref.channel = channel;
@@ -427,22 +481,23 @@ public:
             l.metallic = unit(pbr.metallicFactor);
             l.roughness = unit(pbr.roughnessFactor);
             l.specular = 0.04f;  // glTF's dielectric F0
-            l.maps.baseColor = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, at + " base colour");
-            const TextureRef mr = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                          at + " metallic-roughness");
+            l.maps.baseColor = texture(pbr.baseColorTexture, at + " base colour", l.maps.samplingOf(MapSlot::BaseColor));
+            const TextureRef mr =
+                texture(pbr.metallicRoughnessTexture, at + " metallic-roughness", l.maps.samplingOf(MapSlot::Roughness));
+            l.maps.samplingOf(MapSlot::Metallic) = l.maps.samplingOf(MapSlot::Roughness);
             if (!mr.empty()) {
                 l.maps.roughness = mr;
                 l.maps.roughness.channel = 1;  // G
                 l.maps.metallic = mr;
                 l.maps.metallic.channel = 2;  // B
             }
-            l.maps.normal = texture(g.normalTexture.index, g.normalTexture.texCoord, at + " normal");
+            l.maps.normal = texture(g.normalTexture, at + " normal", l.maps.samplingOf(MapSlot::Normal));
             l.maps.normalScale = std::isfinite(g.normalTexture.scale)
                                      ? static_cast<float>(std::clamp(g.normalTexture.scale, -double(kMaxNormalScale), double(kMaxNormalScale)))
                                      : 1.0f;
-            l.maps.occlusion = texture(g.occlusionTexture.index, g.occlusionTexture.texCoord, at + " occlusion");
+            l.maps.occlusion = texture(g.occlusionTexture, at + " occlusion", l.maps.samplingOf(MapSlot::Occlusion));
             l.maps.occlusionStrength = unit(g.occlusionTexture.strength);
-            l.maps.emissive = texture(g.emissiveTexture.index, g.emissiveTexture.texCoord, at + " emissive");
+            l.maps.emissive = texture(g.emissiveTexture, at + " emissive", l.maps.samplingOf(MapSlot::Emissive));
             double strength = 1.0;
             if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end() &&
                                                                                  it->second.Has("emissiveStrength")) {
@@ -650,6 +705,20 @@ public:
                 mesh.uvs.resize(n);
                 for (std::size_t i = 0; i < n; ++i) mesh.uvs[i] = glm::vec2(uvs[i][0], uvs[i][1]);
             }
+            if (const int uv1Accessor = attribute("TEXCOORD_1"); uv1Accessor >= 0) {
+                const auto uvs = readFloats<2>(uv1Accessor, at + " TEXCOORD_1");
+                sameCount(uvs.size(), "TEXCOORD_1");
+                mesh.uvs1.resize(n);
+                for (std::size_t i = 0; i < n; ++i) mesh.uvs1[i] = glm::vec2(uvs[i][0], uvs[i][1]);
+            }
+            // COLOR_0: RGB or RGBA (alpha 1 where absent), linear, multiplying the base colour.
+            if (const int colourAccessor = attribute("COLOR_0"); colourAccessor >= 0) {
+                const auto colours = readFloats<4>(colourAccessor, at + " COLOR_0", 3);
+                sameCount(colours.size(), "COLOR_0");
+                mesh.colours.resize(n);
+                for (std::size_t i = 0; i < n; ++i)
+                    mesh.colours[i] = glm::clamp(glm::vec4(colours[i][0], colours[i][1], colours[i][2], colours[i][3]), 0.0f, 1.0f);
+            }
             const int tangentAccessor = attribute("TANGENT");
             if (tangentAccessor >= 0 && normalAccessor >= 0) {
                 const auto tangents = readFloats<4>(tangentAccessor, at + " TANGENT");
@@ -747,6 +816,8 @@ public:
         compact(mesh.normals);
         compact(mesh.uvs);
         compact(mesh.tangents);
+        compact(mesh.uvs1);
+        compact(mesh.colours);
     }
 
     Asset read() {

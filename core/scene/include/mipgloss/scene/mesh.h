@@ -26,6 +26,10 @@ struct Mesh {
     // v down as glTF has it) and tangents (xyz unit, w = ±1 the bitangent's sign, glTF's TANGENT).
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> tangents;
+    // glTF's TEXCOORD_1 (a second UV set a texture may name) and COLOR_0 (linear RGBA, multiplying
+    // the base colour and its alpha), each empty or one per vertex.
+    std::vector<glm::vec2> uvs1;
+    std::vector<glm::vec4> colours;
     Bounds bounds;
 
     std::size_t triangleCount() const { return indices.size() / 3; }

@@ -17,6 +17,9 @@
 
 #include <cstdint>
 #include <array>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -71,6 +74,28 @@ bool parseAlphaMode(const std::string& text, AlphaMode& out);
 inline constexpr float kMaxNormalScale = 10.0f;  // |normalScale| at most (a steeper tilt is noise)
 inline constexpr float kMaxEmissive = 1e20f;     // the radiance range the renderer holds (radiance-range.md)
 
+// How a material reads one of its maps (glTF's textureInfo, its sampler and KHR_texture_transform):
+// which UV set, the transform applied to it, the wrap modes and whether magnification and
+// minification take the nearest texel. The default is glTF's: set 0, no transform, repeat, linear.
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+const char* textureWrapName(TextureWrap wrap);  // "repeat", "clamp", "mirror"
+bool parseTextureWrap(const std::string& text, TextureWrap& out);
+struct TextureSampling {
+    int texCoord = 0;  // TEXCOORD_0 or TEXCOORD_1
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    bool nearestMagnify = false, nearestMinify = false;
+    // KHR_texture_transform: uv' = T(offset) · R(rotation) · S(scale) · uv, rotation in radians
+    // counter-clockwise in UV space (the extension's matrix).
+    glm::vec2 offset{0.0f}, scale{1.0f};
+    float rotation = 0.0f;
+
+    glm::mat3 uvTransform() const;
+    bool operator==(const TextureSampling&) const = default;
+};
+// The maps in MaterialMaps's order, each one's TextureSampling at its index.
+enum class MapSlot { BaseColor, Metallic, Roughness, Normal, Occlusion, Emissive };
+inline constexpr int kMaterialMapCount = 6;
+
 struct MaterialMaps {
     TextureRef baseColor;   // sRGB RGBA: colour × Layers::baseColor, alpha × baseAlpha
     TextureRef metallic;    // linear, one channel × Layers::metallic
@@ -87,6 +112,10 @@ struct MaterialMaps {
     // glTF's doubleSided: false draws only the faces whose front (counter-clockwise) faces the
     // viewer. True by default, as every mesh format but glTF means it (open meshes show inside).
     bool doubleSided = true;
+    // How each map is read (MapSlot order); metallic and roughness share glTF's one texture.
+    std::array<TextureSampling, kMaterialMapCount> sampling{};
+    const TextureSampling& samplingOf(MapSlot slot) const { return sampling[static_cast<std::size_t>(slot)]; }
+    TextureSampling& samplingOf(MapSlot slot) { return sampling[static_cast<std::size_t>(slot)]; }
 
     bool anyTexture() const;
     // Whether drawing needs the maps at all: a texture, emission, or an alpha cut (the renderer
