@@ -873,6 +873,37 @@ TEST(GltfHostile, RequiredUnknownExtensionIsRefusedByName) {
     EXPECT_CONTAINS(asset.warnings[0], "EXT_mipgloss_imaginary");
 }
 
+// Nothing a still preview leaves out is dropped in silence: animations, skins, morph targets and
+// the scenes besides the default are each named once, with the file.
+TEST(GltfMaterials, AnimationsSkinsMorphTargetsAndOtherScenesAreNamed) {
+    GltfWriter w = plainQuad();
+    tinygltf::Animation wave;
+    wave.name = "Wave";
+    tinygltf::AnimationSampler sampler;
+    sampler.input = sampler.output = 0;
+    wave.samplers.push_back(sampler);
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = 0;
+    channel.target_path = "translation";
+    wave.channels.push_back(channel);
+    w.model().animations.push_back(wave);
+    w.model().skins.emplace_back().joints = {0};
+    w.model().meshes[0].primitives[0].targets.push_back({{"POSITION", 0}});
+    tinygltf::Scene other;
+    other.name = "Other";
+    other.nodes = {0};
+    w.model().scenes.push_back(other);
+    const Asset asset = loadGlb(w, "models/rigged.glb");
+    ASSERT_EQ(asset.warnings.size(), 4u);
+    for (const char* what : {"animation", "skin", "morph targets", "scenes"}) {
+        const bool named = std::any_of(asset.warnings.begin(), asset.warnings.end(), [&](const std::string& s) {
+            return s.find(what) != std::string::npos && s.find("models/rigged.glb") != std::string::npos;
+        });
+        EXPECT_TRUE(named) << what;
+    }
+}
+
 // A Draco-compressed file: its primitive's accessors have no buffer view (the extension holds the
 // data), which tinygltf refuses first ("accessor[0] invalid bufferView"). The refusal names the
 // extension instead, from a .gltf and a .glb alike.

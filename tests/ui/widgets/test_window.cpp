@@ -21,6 +21,8 @@
 #include <gtest/gtest.h>
 
 #include <QAction>
+#include <QColorDialog>
+#include <QPushButton>
 #include <QDir>
 #include <QDropEvent>
 #include <QMimeData>
@@ -279,6 +281,27 @@ TEST(MainWindow, BackgroundBlurUsesTheOneLambdaRange) {
     typeInto(blur, QStringLiteral("99"));
     EXPECT_TRUE(isValidLambda(doc->scene().display.backgroundLambda));
     EXPECT_LE(doc->scene().display.backgroundLambda, 8.0f);
+}
+
+// The backdrop's swatch opens a colour dialog; the colour chosen is the document's backdrop, one
+// undo step named for it, and the swatch shows it.
+TEST(MainWindow, BackdropColourIsChosenInADialogAndIsOneUndoStep) {
+    auto w = openWindow();
+    SceneDocument* doc = w->document();
+    auto* button = w->findChild<QPushButton*>(QStringLiteral("backdropButton"));
+    ASSERT_NE(button, nullptr);
+    button->click();
+    auto* dialog = w->findChild<QColorDialog*>(QStringLiteral("backdropDialog"));
+    ASSERT_NE(dialog, nullptr);
+    EXPECT_TRUE(dialog->isVisible());
+    const Rgb before = doc->scene().display.backdrop;
+    dialog->setCurrentColor(QColor(255, 255, 255));
+    dialog->accept();
+    EXPECT_EQ(doc->scene().display.backdrop, Rgb(1.0f));
+    EXPECT_EQ(doc->undoStack()->undoText(), QStringLiteral("Change backdrop colour"));
+    EXPECT_TRUE(button->styleSheet().contains(QStringLiteral("#ffffff")));
+    doc->undoStack()->undo();
+    EXPECT_EQ(doc->scene().display.backdrop, before);
 }
 
 TEST(MainWindow, ImportedMeshesArePlacedBesideAndSizedToTheScene) {

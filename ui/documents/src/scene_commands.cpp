@@ -224,6 +224,7 @@ void SetDisplayCommand::updateText() {
     field.note(before_.showBackground != after_.showBackground,
                after_.showBackground ? EDIT_TEXT("Show background") : EDIT_TEXT("Hide background"));
     field.note(before_.backgroundLambda != after_.backgroundLambda, EDIT_TEXT("Change background blur"));
+    field.note(before_.backdrop != after_.backdrop, EDIT_TEXT("Change backdrop colour"));
     field.note(before_.exposureEv != after_.exposureEv, EDIT_TEXT("Change exposure"));
     field.note(before_.toneMap != after_.toneMap, EDIT_TEXT("Change tone map"));
     field.note(before_.samples != after_.samples, EDIT_TEXT("Change multisampling"));

@@ -303,8 +303,10 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     }
 }
 
-// The objects, in their programs: the single lobes, the glTF materials, those with maps
-// (drawObjects's `kind`, programOf).
+// The objects of `set` in their programs (programOf): covering ones grouped by program, so each
+// program is bound once; blended ones farthest first, by the distance to each object's (glTF: each
+// primitive's) centre, so each is blended over what lies behind it (order-dependent blending:
+// overlapping parts of one object, or objects that interpenetrate, can still be out of order).
 void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene, const glm::vec3& eye,
                                     const glm::mat4& viewProjection, const glm::mat3& envRotation, const Frustum& frustum) {
     auto programFor = [&](ObjectProgram kind) {
@@ -316,38 +318,27 @@ void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene,
         return aov ? aovMapsProgram.get() : objectMapsProgram.get();
     };
     std::vector<int> chosen;
+    std::vector<float> order(scene.objects.size(), 0.0f);  // the sort key of each chosen object
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& o = scene.objects[i];
         if (!o.visible || !o.mesh) continue;
         const bool blended = isBlended(scene.materialOf(o));
-        if (set == ObjectSet::All || (set == ObjectSet::Blended) == blended) chosen.push_back(static_cast<int>(i));
+        if (set != ObjectSet::All && (set == ObjectSet::Blended) != blended) continue;
+        chosen.push_back(static_cast<int>(i));
+        order[i] = set == ObjectSet::Blended ? -glm::length(o.worldCentre() - eye) : static_cast<float>(programOf(scene, o));
     }
-    if (set == ObjectSet::Blended) {
-        // Farthest first, by the distance to each object's (glTF: each primitive's) centre, so each
-        // is blended over what lies behind it (order-dependent blending; overlapping parts of one
-        // object, or objects that interpenetrate, can still be out of order).
-        std::vector<float> distance(scene.objects.size(), 0.0f);
-        for (const int i : chosen) distance[static_cast<std::size_t>(i)] = glm::length(scene.objects[static_cast<std::size_t>(i)].worldCentre() - eye);
-        std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) {
-            return distance[static_cast<std::size_t>(a)] > distance[static_cast<std::size_t>(b)];
-        });
-        // In that order, each run of one program drawn together.
-        for (std::size_t start = 0; start < chosen.size();) {
-            const ObjectProgram kind = programOf(scene, scene.objects[static_cast<std::size_t>(chosen[start])]);
-            std::size_t end = start + 1;
-            while (end < chosen.size() && programOf(scene, scene.objects[static_cast<std::size_t>(chosen[end])]) == kind) ++end;
-            const std::vector<int> run(chosen.begin() + static_cast<std::ptrdiff_t>(start), chosen.begin() + static_cast<std::ptrdiff_t>(end));
-            drawObjects(*programFor(kind), scene, run, eye, viewProjection, envRotation, frustum, aov);
-            start = end;
-        }
-        return;
-    }
-    // Covering objects in any order: each program once, its objects together.
-    for (const ObjectProgram kind : {ObjectProgram::Single, ObjectProgram::Layered, ObjectProgram::LayeredMaps}) {
-        std::vector<int> ofKind;
-        for (const int i : chosen)
-            if (programOf(scene, scene.objects[static_cast<std::size_t>(i)]) == kind) ofKind.push_back(i);
-        if (!ofKind.empty()) drawObjects(*programFor(kind), scene, ofKind, eye, viewProjection, envRotation, frustum, aov);
+    std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) {
+        return order[static_cast<std::size_t>(a)] < order[static_cast<std::size_t>(b)];
+    });
+    // In that order, each run of one program drawn together.
+    for (std::size_t start = 0; start < chosen.size();) {
+        const ObjectProgram kind = programOf(scene, scene.objects[static_cast<std::size_t>(chosen[start])]);
+        std::size_t end = start + 1;
+        while (end < chosen.size() && programOf(scene, scene.objects[static_cast<std::size_t>(chosen[end])]) == kind) ++end;
+        const std::vector<int> run(chosen.begin() + static_cast<std::ptrdiff_t>(start),
+                                   chosen.begin() + static_cast<std::ptrdiff_t>(end));
+        drawObjects(*programFor(kind), scene, run, eye, viewProjection, envRotation, frustum, aov);
+        start = end;
     }
 }
 

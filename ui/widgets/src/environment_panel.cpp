@@ -7,6 +7,7 @@
 #include "edit_sessions.h"
 
 #include <QCheckBox>
+#include <QColorDialog>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileInfo>
@@ -144,9 +145,28 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     connect(backgroundBlur_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         editDisplay([v](DisplaySettings& d) { d.backgroundLambda = static_cast<float>(v); }, backgroundBlur_);
     });
+    backdrop_ = new QPushButton(this);
+    backdrop_->setObjectName(QStringLiteral("backdropButton"));
+    backdrop_->setToolTip(tr("The colour behind the objects while the background is hidden, as the screen "
+                             "shows it, whatever the exposure and tone map (white for product shots)"));
+    connect(backdrop_, &QPushButton::clicked, this, [this] {
+        if (!backdropDialog_) {
+            backdropDialog_ = new QColorDialog(this);
+            backdropDialog_->setObjectName(QStringLiteral("backdropDialog"));
+            backdropDialog_->setWindowTitle(tr("Backdrop colour"));
+            connect(backdropDialog_, &QColorDialog::colorSelected, this, [this](const QColor& c) {
+                const Rgb colour(static_cast<float>(c.redF()), static_cast<float>(c.greenF()), static_cast<float>(c.blueF()));
+                editDisplay([colour](DisplaySettings& d) { d.backdrop = colour; });
+            });
+        }
+        const Rgb& now = document_->scene().display.backdrop;
+        backdropDialog_->setCurrentColor(QColor::fromRgbF(now.r, now.g, now.b));
+        backdropDialog_->open();
+    });
     auto* backgroundRow = new QHBoxLayout;
     backgroundRow->addWidget(showBackground_);
     backgroundRow->addWidget(backgroundBlur_, 1);
+    backgroundRow->addWidget(backdrop_);
     form->addRow(tr("Background"), backgroundRow);
 
     exposure_ = new QDoubleSpinBox(this);
@@ -203,6 +223,13 @@ void EnvironmentPanel::editEnvironment(const std::function<void(EnvironmentSetti
     document_->setEnvironment(s, from ? sessions_->key(from) : 0);
 }
 
+void EnvironmentPanel::showBackdropSwatch(const Rgb& colour) {
+    const QColor c = QColor::fromRgbF(colour.r, colour.g, colour.b);
+    backdrop_->setText(tr("Backdrop"));
+    backdrop_->setStyleSheet(QStringLiteral("QPushButton { background-color: %1; color: %2; }")
+                                 .arg(c.name(), c.lightnessF() > 0.5 ? QStringLiteral("black") : QStringLiteral("white")));
+}
+
 void EnvironmentPanel::editDisplay(const std::function<void(DisplaySettings&)>& edit, const QObject* from) {
     DisplaySettings d = document_->scene().display;
     edit(d);
@@ -231,6 +258,7 @@ void EnvironmentPanel::refresh() {
     showBackground_->setChecked(d.showBackground);
     backgroundBlur_->setValue(d.backgroundLambda);
     backgroundBlur_->setEnabled(d.showBackground);
+    showBackdropSwatch(d.backdrop);
     exposure_->setValue(d.exposureEv);
     toneMap_->setCurrentIndex(toneMap_->findData(static_cast<int>(d.toneMap)));
     int samplesIndex = samples_->findData(d.samples);

@@ -826,6 +826,19 @@ public:
                 throw AssetError(file_, "requires the extension " + e + ", which mipgloss does not read");
         for (const std::string& e : model_.extensionsUsed)
             if (!kSupportedExtensions.count(e)) warn("uses the extension " + e + ", which is not read (drawn without it)");
+        // What a still preview does not draw, named once per file rather than dropped in silence.
+        if (!model_.animations.empty())
+            warn("has " + std::to_string(model_.animations.size()) + " animation(s); drawn at rest (animations are not played)");
+        if (!model_.skins.empty())
+            warn("has " + std::to_string(model_.skins.size()) + " skin(s); drawn in the bind pose (skinning is not read)");
+        std::size_t morphed = 0;
+        for (const tinygltf::Mesh& mesh : model_.meshes)
+            for (const tinygltf::Primitive& p : mesh.primitives) morphed += p.targets.empty() ? 0 : 1;
+        if (morphed > 0)
+            warn(std::to_string(morphed) + " primitive(s) have morph targets; drawn with their base shape (targets are not read)");
+        if (model_.scenes.size() > 1)
+            warn("has " + std::to_string(model_.scenes.size()) + " scenes; only the default one (scene " +
+                 std::to_string(std::max(model_.defaultScene, 0)) + ") is drawn");
         readMaterials();
         onPath_.assign(model_.nodes.size(), false);
         reached_.assign(model_.nodes.size(), 0);

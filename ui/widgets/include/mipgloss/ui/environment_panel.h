@@ -18,6 +18,8 @@
 #include <functional>
 
 class QCheckBox;
+class QColorDialog;
+class QPushButton;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -60,6 +62,11 @@ private:
     QDoubleSpinBox* rotationDegrees_ = nullptr;  // the same angle, in degrees
     QCheckBox* showBackground_ = nullptr;
     QDoubleSpinBox* backgroundBlur_ = nullptr;
+    // The backdrop behind the objects while the background is hidden (DisplaySettings::backdrop):
+    // a swatch that opens a colour dialog (made when first asked for, window-modal).
+    QPushButton* backdrop_ = nullptr;
+    QColorDialog* backdropDialog_ = nullptr;
+    void showBackdropSwatch(const Rgb& colour);
     QDoubleSpinBox* exposure_ = nullptr;
     QComboBox* toneMap_ = nullptr;
     QComboBox* samples_ = nullptr;
