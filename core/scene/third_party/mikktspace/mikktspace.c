@@ -21,6 +21,11 @@
  *  3. This notice may not be removed or altered from any source distribution.
  */
 
+/* ALTERED by mipgloss (the zlib licence's condition 2): one change from the reference at
+ * github.com/mmikk/MikkTSpace @ 3e895b4, in QuickSortEdges' pseudo-random pivot: the rotation
+ * "uSeed>>(32-t)" shifts a 32-bit value by 32 when t is 0, which C leaves undefined (UBSan stops
+ * there); "(32-t)&31" gives the value x86 computes anyway, so the tangents do not change. */
+
 #include <assert.h>
 #include <stdio.h>
 #include <math.h>
@@ -1457,7 +1462,7 @@ static void QuickSort(int* pSortBuffer, int iLeft, int iRight, unsigned int uSee
 
 	// Random
 	unsigned int t=uSeed&31;
-	t=(uSeed<<t)|(uSeed>>(32-t));
+	t=(uSeed<<t)|(uSeed>>((32-t)&31));  // mipgloss: "&31" added, see the note at the top
 	uSeed=uSeed+t+3;
 	// Random end
 
@@ -1664,7 +1669,7 @@ static void QuickSortEdges(SEdge * pSortBuffer, int iLeft, int iRight, const int
 
 	// Random
 	t=uSeed&31;
-	t=(uSeed<<t)|(uSeed>>(32-t));
+	t=(uSeed<<t)|(uSeed>>((32-t)&31));  // mipgloss: "&31" added, see the note at the top
 	uSeed=uSeed+t+3;
 	// Random end
 
