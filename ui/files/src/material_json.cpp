@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace mipgloss::ui {
 
@@ -330,7 +331,7 @@ MaterialMaps JsonReader::maps(const QJsonObject& o, const std::string& where) co
                                                                       ? QJsonValue(0.0)
                                                                       : so.value(QLatin1String("rotation")),
                                                                   keyName(item, "rotation")),
-                                                           2.0 * 3.14159265358979323846));
+                                                           2.0 * std::numbers::pi));
         }
     }
     return m;

@@ -27,6 +27,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <string_view>
@@ -153,6 +154,13 @@ std::string glbContainerProblem(std::span<const unsigned char> bytes) {
     return {};
 }
 
+// A file that requires an extension this reader does not honour is refused by its name.
+void refuseUnreadRequired(const std::vector<std::string>& required, const fs::path& file) {
+    for (const std::string& e : required)
+        if (!kSupportedExtensions.count(e))
+            throw AssetError(file, "requires the extension " + e + ", which mipgloss does not read");
+}
+
 // The names in the JSON's "extensionsRequired" array, read before tinygltf parses the file: a file
 // that requires an extension we do not read (Draco, meshopt) is refused by that name, where
 // tinygltf would first fail on what the extension replaces ("accessor[0] invalid bufferView").
@@ -196,9 +204,7 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
     if (binary)
         if (const std::string problem = glbContainerProblem(bytes); !problem.empty())
             throw AssetError(file, "not a readable GLB file: " + problem);
-    for (const std::string& e : requiredExtensions(jsonOf(bytes, binary)))
-        if (!kSupportedExtensions.count(e))
-            throw AssetError(file, "requires the extension " + e + ", which mipgloss does not read");
+    refuseUnreadRequired(requiredExtensions(jsonOf(bytes, binary)), file);
     if (binary) {
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
     } else {
@@ -391,7 +397,7 @@ public:
             sampling.scale = numbers("scale", sampling.scale);
             if (t.Has("rotation") && t.Get("rotation").IsNumber()) {
                 const double r = t.Get("rotation").GetNumberAsDouble();
-                if (std::isfinite(r)) sampling.rotation = static_cast<float>(std::remainder(r, 2.0 * 3.14159265358979323846));
+                if (std::isfinite(r)) sampling.rotation = static_cast<float>(std::remainder(r, 2.0 * std::numbers::pi));
             }
             if (t.Has("texCoord") && t.Get("texCoord").IsInt()) texCoord = t.Get("texCoord").GetNumberAsInt();
         }
@@ -400,7 +406,7 @@ public:
         return texture(info.index, where, sampling);
     }
 
-    TextureRef texture(int index, const std::string& where, TextureSampling& sampling, int channel = 0) {
+    TextureRef texture(int index, const std::string& where, TextureSampling& sampling) {
         if (index < 0) return {};
         if (static_cast<std::size_t>(index) >= model_.textures.size())
             fail(where, "refers to texture " + std::to_string(index) + ", but the file has " +
@@ -432,7 +438,6 @@ public:
         }
         const tinygltf::Image& image = model_.images[static_cast<std::size_t>(t.source)];
         TextureRef ref;
-        ref.channel = channel;
         if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
             ref.file = (file_.parent_path() / uriDecode(image.uri)).lexically_normal().string();
         } else {
@@ -604,7 +609,7 @@ public:
             return;
         }
         const double yfov = gc.perspective.yfov;
-        if (!(yfov > 0.0 && yfov < 3.1415)) {
+        if (!(yfov > 0.0 && yfov < std::numbers::pi)) {
             warn(at + " has a yfov of " + std::to_string(yfov) + " radians, not in (0, π); left out");
             return;
         }
@@ -623,7 +628,7 @@ public:
         camera.position = glm::vec3(position);
         camera.forward = glm::vec3(forward / fl);
         camera.up = glm::vec3(up / ul);
-        camera.fovYDegrees = static_cast<float>(yfov * 180.0 / 3.14159265358979323846);
+        camera.fovYDegrees = static_cast<float>(yfov * 180.0 / std::numbers::pi);
         asset_.cameras.push_back(std::move(camera));
     }
 
@@ -821,9 +826,7 @@ public:
     }
 
     Asset read() {
-        for (const std::string& e : model_.extensionsRequired)
-            if (!kSupportedExtensions.count(e))
-                throw AssetError(file_, "requires the extension " + e + ", which mipgloss does not read");
+        refuseUnreadRequired(model_.extensionsRequired, file_);  // as parsed (the scan before the parse may miss one)
         for (const std::string& e : model_.extensionsUsed)
             if (!kSupportedExtensions.count(e)) warn("uses the extension " + e + ", which is not read (drawn without it)");
         // What a still preview does not draw, named once per file rather than dropped in silence.
