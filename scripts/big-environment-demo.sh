@@ -34,7 +34,7 @@ row=$(grep '^8192x4096' "$work/bench.txt" | head -1)
 oiio=$(awk '{print $4}' <<<"$row")
 
 echo "== the previewer, first frame (default scene, then the 8k map)"
-run_gui() { xvfb-run -a -s "-screen 0 1280x1024x24" "$gui" --time-to-first-frame "$@" 2>/dev/null; }
+run_gui() { xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$gui" --time-to-first-frame "$@" 2>/dev/null; }
 default_line=$(run_gui)
 echo "default scene: $default_line"
 big_line=$(run_gui "$input")

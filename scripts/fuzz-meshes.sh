@@ -10,7 +10,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 if [[ -z "${DISPLAY:-}" ]]; then
   command -v xvfb-run >/dev/null || { echo "fuzz-meshes: no X display and no xvfb-run (apt install xvfb)" >&2; exit 2; }
   export QT_QPA_PLATFORM=xcb
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" python3 "$here/fuzz-meshes.py" "$@"
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" python3 "$here/fuzz-meshes.py" "$@"
 fi
 export QT_QPA_PLATFORM="${QT_QPA_PLATFORM:-xcb}"
 exec python3 "$here/fuzz-meshes.py" "$@"

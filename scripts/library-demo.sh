@@ -17,7 +17,7 @@ bunny="$root/tests/assets/meshes/bunny_npm_lowres.obj"
 command -v oiiotool >/dev/null || { echo "library-demo: needs oiiotool (apt install openimageio-tools)" >&2; exit 2; }
 if [[ -z "${DISPLAY:-}" && -z "${LIBRARY_DEMO_UNDER_XVFB:-}" ]]; then
   export LIBRARY_DEMO_UNDER_XVFB=1 QT_QPA_PLATFORM=xcb
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$build"
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" "$build"
 fi
 export QT_QPA_PLATFORM="${QT_QPA_PLATFORM:-xcb}"
 

@@ -14,7 +14,7 @@ bin=build/release/app
 if [[ -n "${DISPLAY:-}" ]]; then
   QT_QPA_PLATFORM=xcb "$bin/mipgloss" render --out build/default-scene.png
 else
-  xvfb-run -a -s "-screen 0 1280x1024x24" env QT_QPA_PLATFORM=xcb \
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" env QT_QPA_PLATFORM=xcb \
     "$bin/mipgloss" render --out build/default-scene.png
 fi
 echo "default scene rendered to build/default-scene.png"

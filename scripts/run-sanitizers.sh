@@ -38,7 +38,7 @@ source scripts/sanitizer-env.sh
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j"$(nproc)"
 export QT_QPA_PLATFORM=xcb
-run() { xvfb-run -a -s "-screen 0 1280x1024x24" ctest -j"$(nproc)" "$@"; }
+run() { xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest -j"$(nproc)" "$@"; }
 if [ "$kind" = asan ]; then
   # The headless part's filter is its preset's (CMakePresets.json says why not -LE here).
   gl_files='^(OpenFiles|LibraryDocument|LibraryCommand|MeshImporter|EnvironmentEarly|Saving)\.|^MainWindow\.Bad|^LookDevWindow\.(MeshesOpened|Exports|Compare|ABroken)'

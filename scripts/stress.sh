@@ -4,4 +4,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export QT_QPA_PLATFORM=xcb
-exec xvfb-run -a -s "-screen 0 1280x1024x24" python3 scripts/stress.py "${1:-build/dev}"
+exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" python3 scripts/stress.py "${1:-build/dev}"

@@ -106,7 +106,7 @@ check "mipgloss bake (the embedded default)" \
 
 # An X server outside the root: the root holds only the package and what it depends on.
 display=:$((90 + RANDOM % 9))
-Xvfb "$display" -screen 0 1280x1024x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
+Xvfb "$display" -screen 0 1280x1024x24 -noreset -nolisten tcp >"$work/xvfb.log" 2>&1 &
 xvfb_pid=$!
 sleep 2
 mkdir -p "$root/tmp/.X11-unix"
