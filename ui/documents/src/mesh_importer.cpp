@@ -154,6 +154,7 @@ void MeshImporter::finish(const std::vector<Loaded>& results, Placement placemen
                 id = document_->object(index).material;
             }
         }
+        document_->addFileCameras(QFileInfo(r.path).absoluteFilePath().toStdString(), asset.cameras);
         added << tr("%1 (%2 triangles%3)")
                      .arg(QFileInfo(r.path).fileName())
                      .arg(QLocale().toString(static_cast<qlonglong>(triangles(asset))))

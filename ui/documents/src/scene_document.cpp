@@ -6,6 +6,7 @@
 #include "mipgloss/ui/background_worker.h"
 #include "scene_commands.h"
 
+#include <QFileInfo>
 #include <QUndoStack>
 
 #include <algorithm>
@@ -280,7 +281,8 @@ void SceneDocument::withdrawFailedEnvironment(const EnvironmentSettings& failed,
     notifyChanged();
 }
 
-void SceneDocument::resetScene(Scene scene) {
+void SceneDocument::resetScene(Scene scene, FileCameras cameras) {
+    fileCameras_ = std::move(cameras);
     for (NamedMaterial& m : scene.materials) m.material = admitted(m.material);
     for (SceneObject& o : scene.objects)
         if (!scene.findMaterial(o.material)) o.material = scene.addMaterial(o.name, Material{});
@@ -400,6 +402,26 @@ void SceneDocument::replaceEnvironment(const EnvironmentSettings& settings) {
 void SceneDocument::replaceDisplay(const DisplaySettings& settings) {
     scene_.display = settings;
     emit displayChanged();
+}
+
+void SceneDocument::addFileCameras(const std::string& file, std::vector<AssetCamera> cameras) {
+    if (cameras.empty()) return;
+    fileCameras_[file] = std::move(cameras);
+}
+
+std::vector<SceneDocument::CameraView> SceneDocument::fileCameraViews() const {
+    std::vector<CameraView> out;
+    const Bounds bounds = sceneBounds(scene_);
+    for (const auto& [file, cameras] : fileCameras_) {
+        const auto first = std::find_if(scene_.objects.begin(), scene_.objects.end(),
+                                        [&](const SceneObject& o) { return o.meshSource == file; });
+        if (first == scene_.objects.end()) continue;
+        const QString name = QFileInfo(QString::fromStdString(file)).fileName();
+        for (const AssetCamera& camera : cameras)
+            out.push_back({QStringLiteral("%1 (%2)").arg(QString::fromStdString(camera.name), name),
+                           viewThrough(camera, first->transform, bounds)});
+    }
+    return out;
 }
 
 }  // namespace mipgloss::ui

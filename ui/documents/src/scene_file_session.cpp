@@ -56,8 +56,8 @@ QString SceneFileSession::saveAsSuggestion() const {
 // ---------------------------------------------------------------------------------------------
 // New, open, save
 
-void SceneFileSession::replaceScene(Scene scene) {
-    document_->resetScene(std::move(scene));
+void SceneFileSession::replaceScene(Scene scene, SceneDocument::FileCameras cameras) {
+    document_->resetScene(std::move(scene), std::move(cameras));
     emit sceneReplaced();
 }
 
@@ -76,7 +76,8 @@ void SceneFileSession::startNew(Scene scene) {
 bool SceneFileSession::open(const QString& path) {
     try {
         SceneFileReport report;
-        replaceScene(loadScene(path.toStdString(), &report));
+        Scene scene = loadScene(path.toStdString(), &report);
+        replaceScene(std::move(scene), std::move(report.cameras));
         matchesFile(path);
         logWarnings(report);
         const QString name = QFileInfo(path).fileName();
@@ -208,7 +209,7 @@ bool SceneFileSession::restore(const Autosave::Leftover& leftover) {
         SceneFileReport report;
         Scene scene = loadScene(leftover.file.toStdString(), &report);
         logWarnings(report);
-        replaceScene(std::move(scene));
+        replaceScene(std::move(scene), std::move(report.cameras));
     } catch (const SceneFileError& e) {
         // Kept: the user may still rescue it by hand, and the message says where it is.
         emit messageShown(tr("Could not restore the autosave: %1").arg(QString::fromStdString(e.what())), true);

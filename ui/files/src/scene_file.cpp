@@ -74,7 +74,7 @@ fs::path absoluteNormal(const fs::path& p) {
 class Reader : public JsonReader {
 public:
     Reader(const fs::path& file, SceneFileReport* report)
-        : JsonReader(file, report ? &report->warnings : nullptr) {}
+        : JsonReader(file, report ? &report->warnings : nullptr), report_(report) {}
 
     [[noreturn]] void fail(const std::string& reason) const override { throw SceneFileError(file(), reason); }
 
@@ -218,6 +218,7 @@ private:
             try {
                 cached = std::make_shared<const Asset>(loadAsset(resolved));
                 for (const std::string& w : cached->warnings) warn(w);
+                if (report_ && !cached->cameras.empty()) report_->cameras[resolved.string()] = cached->cameras;
             } catch (const FileError& e) {
                 fail("asset of " + where + ": " + e.what());
             }
@@ -228,6 +229,7 @@ private:
         return cached->parts[static_cast<std::size_t>(part)].mesh;
     }
 
+    SceneFileReport* report_;
     std::map<std::string, std::shared_ptr<const Mesh>> cache_;
     std::map<std::string, std::shared_ptr<const Asset>> assets_;
 };
@@ -387,8 +389,10 @@ Scene sceneFromJson(const QByteArray& json, const fs::path& sceneFile, SceneFile
     // Version 6: the saved view; older files have none and are framed when opened.
     if (version >= kSceneVersionCamera && root.contains(QLatin1String("camera")))
         scene.camera = reader.camera(reader.object(root, "camera", "camera", true));
-    if (report) report->warnings.insert(report->warnings.end(), local.warnings.begin(),
-                                        local.warnings.end());
+    if (report) {
+        report->warnings.insert(report->warnings.end(), local.warnings.begin(), local.warnings.end());
+        report->cameras.merge(local.cameras);
+    }
     return scene;
 }
 

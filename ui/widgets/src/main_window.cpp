@@ -302,6 +302,13 @@ void MainWindow::createMenus() {
     view->addAction(frameSelectedAction_);
     view->addAction(frameAllAction_);
     view->addAction(resetViewAction_);
+    // The glTF files' own cameras (SceneDocument::fileCameraViews), listed as the menu opens so
+    // it follows imports, undo and opened scenes.
+    QMenu* lookThrough = view->addMenu(tr("&Look through"));
+    lookThrough->setObjectName(QStringLiteral("lookThroughMenu"));
+    lookThrough->setToolTip(tr("Look through a camera the imported files hold"));
+    lookThrough->setToolTipsVisible(true);
+    connect(lookThrough, &QMenu::aboutToShow, this, [this, lookThrough] { fillLookThroughMenu(lookThrough); });
     view->addSeparator();
     view->addAction(turntableAction_);
     view->addAction(showCountersAction_);
@@ -551,6 +558,24 @@ bool MainWindow::exportImage(const QString& path, QSize size) {
         messages_->showMessage(path + QStringLiteral(": ") + QString::fromStdString(e.what()), true);
     }
     return false;
+}
+
+void MainWindow::fillLookThroughMenu(QMenu* menu) {
+    menu->clear();
+    const std::vector<SceneDocument::CameraView> views = document_->fileCameraViews();
+    if (views.empty()) {
+        QAction* none = menu->addAction(tr("No cameras in the scene's files"));
+        none->setEnabled(false);
+        return;
+    }
+    for (const SceneDocument::CameraView& v : views) {
+        QAction* action = menu->addAction(v.label);
+        const OrbitCamera camera = v.view;
+        connect(action, &QAction::triggered, this, [this, camera, label = v.label] {
+            viewport_->setCamera(camera);
+            messages_->showMessage(tr("Looking through %1").arg(label), false);
+        });
+    }
 }
 
 void MainWindow::frameAll() { viewport_->frameAll(); }

@@ -32,6 +32,8 @@
 // targeted signals.
 #pragma once
 
+#include "mipgloss/assets/asset.h"
+#include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/library.h"
 #include "mipgloss/scene/scene.h"
 
@@ -41,6 +43,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -116,8 +119,24 @@ public:
     // document has moved on to other settings meanwhile.
     void withdrawFailedEnvironment(const EnvironmentSettings& failed, const EnvironmentSettings& fallback);
 
-    // Replaces everything (open scene, new scene) and clears the undo stack.
-    void resetScene(Scene scene);
+    // Replaces everything (open scene, new scene) and clears the undo stack; `cameras` are the
+    // new scene's files' cameras (below).
+    using FileCameras = std::map<std::string, std::vector<AssetCamera>>;
+    void resetScene(Scene scene, FileCameras cameras = {});
+
+    // The cameras the scene's asset files hold (glTF cameras, asset.h), by the file's absolute
+    // path (SceneObject::meshSource): file data, not an edit, so no undo step; an import adds its
+    // file's, resetScene replaces them all.
+    void addFileCameras(const std::string& file, std::vector<AssetCamera> cameras);
+    // What View → Look through offers: each camera of each file some object in the scene comes
+    // from, placed as that file's first object is (an import places all of a file's parts alone
+    // together; an object moved on its own takes the cameras only if it is the first), framing
+    // the scene's bounds (viewThrough). In the files' order, then the cameras'.
+    struct CameraView {
+        QString label;  // "Camera name (file.gltf)"
+        OrbitCamera view;
+    };
+    std::vector<CameraView> fileCameraViews() const;
 
     int selected() const { return selected_; }
     void setSelected(int index);  // -1 clears
@@ -182,6 +201,7 @@ private:
 
     QUndoStack* undoStack_ = nullptr;
     Scene scene_;
+    FileCameras fileCameras_;
     int selected_ = -1;
     std::shared_ptr<TextureCache> textures_;
     BackgroundWorker* textureWorker_ = nullptr;

@@ -76,12 +76,14 @@
 // clamped with a warning in the report. Optional keys default to the values in scene.h.
 #pragma once
 
+#include "mipgloss/assets/asset.h"
 #include "mipgloss/io/file_error.h"
 #include "mipgloss/scene/scene.h"
 
 #include <QByteArray>
 
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -113,6 +115,9 @@ public:
 
 struct SceneFileReport {
     std::vector<std::string> warnings;  // one line each, naming the file
+    // The cameras each asset file the objects come from holds (asset.h: glTF cameras, in the
+    // file's own space), by the file's absolute path; files without cameras are left out.
+    std::map<std::string, std::vector<AssetCamera>> cameras;
 };
 
 // The JSON text for `scene`, paths written relative to `sceneFile`'s folder (see above).

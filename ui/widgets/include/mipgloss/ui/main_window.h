@@ -39,6 +39,7 @@
 #include <functional>
 
 class QAction;
+class QMenu;
 class QListView;
 class QWidget;
 
@@ -187,6 +188,7 @@ private:
     // The document has a new scene (SceneFileSession::sceneReplaced): the view shows its saved
     // camera, or frames it.
     void showSceneCamera();
+    void fillLookThroughMenu(QMenu* menu);  // View → Look through, each time it opens
 
     // Files: the session's signals shown; the questions asked.
     void connectSession();
