@@ -35,7 +35,7 @@ const char* const kLibraryUsage = R"(
   mipgloss library add LIB.mglib --name NAME [--lambda L | --exponent N] [--mode reflect|normal]
                        [--tint R,G,B] [--irradiance] [--grazing]
                        [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0]
-                       [--coat W] [--coat-roughness R]
+                       [--coat W] [--coat-roughness R] [--specular-weight W] [--specular-color R,G,B]
   mipgloss library import-gltf LIB.mglib ASSET
   mipgloss library remove LIB.mglib NAME
   mipgloss library rename LIB.mglib OLD NEW
@@ -55,8 +55,8 @@ library: the material library files mipgloss-gui keeps (format "mipgloss-library
                  "mirror"), --mode (default reflect; normal with a high lambda is the paper's
                  diffuse), --tint (default 1,1,1), --irradiance (normal mode: the irradiance map
                  instead of the chain), --grazing (sharper toward grazing angles); any of
-                 --base-color, --metallic, --roughness, --specular, --coat, --coat-roughness
-                 makes it a layered material (as for render; --lambda/--exponent then set its
+                 --base-color, --metallic, --roughness, --specular, --coat, --coat-roughness,
+                 --specular-weight, --specular-color makes it a layered material (as for render; --lambda/--exponent then set its
                  glossy layer's lobe, --irradiance its diffuse base from the irradiance map)
   import-gltf    adds every material of ASSET (glTF .gltf/.glb, or OBJ with its MTL) under its
                  name in the file (" 2", " 3" after a name the library has), layered, with its

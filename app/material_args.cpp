@@ -96,6 +96,15 @@ bool readLayerFlag(const std::string& flag, const std::function<std::string()>& 
     } else if (flag == "--metallic") flags.metallic = unit();
     else if (flag == "--roughness") flags.roughness = unit();
     else if (flag == "--specular") flags.specular = unit();
+    else if (flag == "--specular-weight") flags.specularWeight = unit();
+    else if (flag == "--specular-color") {
+        const Rgb c = parseTint(flag, value());
+        if (c.r > kMaxSpecularColour || c.g > kMaxSpecularColour || c.b > kMaxSpecularColour)
+            throw UsageError(flag + " needs three numbers from 0 to " + std::to_string(int(kMaxSpecularColour)) +
+                             " (it multiplies F0, which is then at most 1), got " + std::to_string(c.r) + "," +
+                             std::to_string(c.g) + "," + std::to_string(c.b));
+        flags.specularColor = c;
+    }
     else if (flag == "--coat") flags.coat = unit();
     else if (flag == "--coat-roughness") flags.coatRoughness = unit();
     else return false;
@@ -114,6 +123,8 @@ void applyLayerFlags(const LayerFlags& flags, std::optional<float> lambda, const
     if (flags.roughness) l.roughness = *flags.roughness;
     if (lambda) l.roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(*lambda)));
     if (flags.specular) l.specular = *flags.specular;
+    if (flags.specularWeight) l.specularWeight = *flags.specularWeight;
+    if (flags.specularColor) l.specularColor = *flags.specularColor;
     if (flags.coat) l.coat = *flags.coat;
     if (flags.coatRoughness) l.coatRoughness = *flags.coatRoughness;
 }

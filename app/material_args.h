@@ -35,11 +35,14 @@ Rgb parseTint(const std::string& flag, const std::string& value);
 
 // A layered material's flags (layered.h), the same for `render` and `library add`:
 //   --base-color R,G,B (linear, each in [0, 1]), --metallic M, --roughness R, --specular F0,
-//   --coat W, --coat-roughness R (each in [0, 1]).
+//   --coat W, --coat-roughness R (each in [0, 1]); KHR_materials_specular's --specular-weight W
+//   (in [0, 1]) and --specular-color R,G,B (each in [0, kMaxSpecularColour]).
 struct LayerFlags {
-    std::optional<Rgb> baseColor;
-    std::optional<float> metallic, roughness, specular, coat, coatRoughness;
-    bool any() const { return baseColor || metallic || roughness || specular || coat || coatRoughness; }
+    std::optional<Rgb> baseColor, specularColor;
+    std::optional<float> metallic, roughness, specular, coat, coatRoughness, specularWeight;
+    bool any() const {
+        return baseColor || metallic || roughness || specular || coat || coatRoughness || specularColor || specularWeight;
+    }
 };
 // True, with the value read through `value` into `flags`, when `flag` is one of them.
 bool readLayerFlag(const std::string& flag, const std::function<std::string()>& value, LayerFlags& flags);

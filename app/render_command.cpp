@@ -55,7 +55,7 @@ const char* const kRenderUsage = R"(
   mipgloss render [SCENE.mipgloss] [--env FILE] [--mesh FILE]... [--library LIB.mglib --material NAME]
                   [--lambda L | --exponent N] [--mode reflect|normal]
                   [--base-color R,G,B] [--metallic M] [--roughness R] [--specular F0] [--coat W]
-                  [--coat-roughness R] [--size WxH] [--env-size N] [--builder NAME]
+                  [--coat-roughness R] [--specular-weight W] [--specular-color R,G,B] [--size WxH] [--env-size N] [--builder NAME]
                   [--exposure EV] [--tonemap linear|reinhard|aces|pbr-neutral|agx] [--background-lambda L]
                   [--no-background] [--background R,G,B] [--env-rotation DEG]
                   [--yaw DEG] [--pitch DEG] [--camera NAME|INDEX] [--samples N] [--no-settle | --no-stack] [--quiet]
@@ -88,6 +88,10 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  --specular, default 0.04; a metal's F0 is its base colour), and a clear coat of
                  weight W; roughness 0 (mirror) to 1; --lambda/--exponent then set the glossy
                  layer's lobe instead of --roughness. Defaults: 0.8,0.8,0.8, 0, 0.5, 0.04, 0, 0.05
+  --specular-weight W  --specular-color R,G,B
+                 KHR_materials_specular: the dielectric's F0 becomes min(F0 * R,G,B, 1) * W and
+                 its grazing F90 W (W 0: a purely diffuse surface); a metal is untouched.
+                 Defaults 1 and 1,1,1 (glTF's plain material)
   --size WxH     image size (default 1024x384 for the default scene, else 800x600); at most
                  what the OpenGL can draw (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE,
                  GL_MAX_VIEWPORT_DIMS), and --samples at most GL_MAX_SAMPLES

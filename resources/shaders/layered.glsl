@@ -3,7 +3,9 @@
 // half of this file), their energy from the exact albedo table uploaded as uGgxAlbedo, and the
 // weights each layer's value is multiplied by. Included by shading_plan.glsl.
 uniform sampler2D uGgxAlbedo;  // TEXTURE_UNIT_SPLIT_SUM, RGB = (A, B, Bd) at the table's nodes
-uniform vec3 uF0;              // mix(specular, baseColor, metallic)
+uniform vec3 uF0;              // mix(dielectric F0, baseColor, metallic) (layered.h, specularF0)
+uniform float uF90;            // mix(specularWeight, 1, metallic) (specularF90)
+uniform vec3 uDiffuseF0;       // the F0 of what the diffuse loses (diffuseFresnelF0)
 uniform vec3 uDiffuseColour;   // baseColor · (1 − metallic)
 uniform float uSpecularRoughness;
 uniform float uCoat;           // 0: no coat
@@ -35,10 +37,11 @@ vec3 ggxAlbedo(float roughness, float cosView) {
 // What each layer's value is multiplied by at N·v = cosView (gltf_brdf.h), and c·Fc, what the coat
 // takes from the base:
 //   coat       c·Fc(N·v)·A_c and c·Fc(N·v)·B_c, likewise     Fc = 0.04 + 0.96 (1 − N·v)⁵
-//   specular   (1 − c·Fc)·F0·A  on the lookups' A-weighted mean, (1 − c·Fc)·B on their B-weighted one
-//   diffuse    (1 − c·Fc)·c_diff·(1 − F0)(1 − Bd)           on E(N)/π
-void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float roughness, out vec3 diffuse,
-                    out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge, out float coatWeight) {
+//   specular   (1 − c·Fc)·F0·A  on the lookups' A-weighted mean, (1 − c·Fc)·F90·B on their B-weighted one
+//   diffuse    (1 − c·Fc)·c_diff·(1 − Fd0 − (F90 − Fd0)·Bd)  on E(N)/π   (F90 = 1: (1 − Fd0)(1 − Bd))
+void layerWeightsOf(float cosView, vec3 f0, float f90, vec3 diffuseF0, vec3 diffuseColour, float roughness,
+                    out vec3 diffuse, out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge,
+                    out float coatWeight) {
     vec3 e = ggxAlbedo(roughness, cosView);
     float m = 1.0 - clamp(cosView, 0.0, 1.0);
     coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
@@ -47,8 +50,8 @@ void layerWeightsOf(float cosView, vec3 f0, vec3 diffuseColour, float roughness,
     coat = vec3(coatWeight * c.x);
     coatEdge = vec3(coatWeight * c.y);
     specular = base * f0 * e.x;
-    specularEdge = vec3(base * e.y);
-    diffuse = base * diffuseColour * (vec3(1.0) - f0) * (1.0 - e.z);
+    specularEdge = vec3(base * f90 * e.y);
+    diffuse = base * diffuseColour * (vec3(1.0) - diffuseF0 - (vec3(f90) - diffuseF0) * e.z);
 }
 
 // Lookup k of K at α for the view `v` in the frame N = z (ggx_sampling.h, ggxLookup: Heitz 2018's
@@ -118,7 +121,7 @@ vec3 lightsThrough(vec3 d, float n) {
 // The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j. A light
 // is not a point: its texels span `radius`, so its D is GGX's widened by it, α'² = α² + (radius/2)²
 // (angles of the reflected direction are twice the half vector's), which keeps D normalized.
-vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0) {
+vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0, float f90) {
     vec3 sum = vec3(0.0);
     float cv = dot(normal, view);
     if (cv <= 0.0) return sum;
@@ -134,7 +137,7 @@ vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0) {
         float distribution = a2 / (PI * d * d);
         float visibility = 0.5 / (cl * sqrt(cv * cv * (1.0 - a2) + a2) + cv * sqrt(cl * cl * (1.0 - a2) + a2));
         float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
-        vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
+        vec3 fresnel = f0 + (vec3(f90) - f0) * (m * m * m * m * m);
         sum += fresnel * (distribution * visibility * cl) * uLightEnergy[j];
     }
     return sum;
@@ -142,7 +145,7 @@ vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0) {
 
 // The lights through the glTF diffuse exactly, and through the model's (1 − F0)(1 − Bd)·E/π, whose
 // difference corrects the diffuse read: Σ (1 − F(v·h))·(N·l)/π·E_j and Σ (N·l)/π·E_j.
-void lightsDiffuse(vec3 normal, vec3 view, vec3 f0, out vec3 exact, out vec3 lambert) {
+void lightsDiffuse(vec3 normal, vec3 view, vec3 f0, float f90, out vec3 exact, out vec3 lambert) {
     exact = vec3(0.0);
     lambert = vec3(0.0);
     for (int j = 0; j < uLightCount; ++j) {
@@ -151,7 +154,7 @@ void lightsDiffuse(vec3 normal, vec3 view, vec3 f0, out vec3 exact, out vec3 lam
         if (cl <= 0.0) continue;
         vec3 h = normalize(l + view);
         float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
-        vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
+        vec3 fresnel = f0 + (vec3(f90) - f0) * (m * m * m * m * m);
         exact += (vec3(1.0) - fresnel) * (cl / PI) * uLightEnergy[j];
         lambert += (cl / PI) * uLightEnergy[j];
     }

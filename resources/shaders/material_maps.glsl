@@ -16,7 +16,11 @@ uniform sampler2D uEmissiveMap;   // sRGB
 uniform bool uUseBaseColorMap, uUseMetallicMap, uUseRoughnessMap, uUseNormalMap, uUseOcclusionMap, uUseEmissiveMap;
 uniform int uMetallicChannel, uRoughnessChannel;
 uniform vec3 uBaseColor;
-uniform float uBaseAlpha, uMetallic, uRoughness, uSpecular;
+uniform float uBaseAlpha, uMetallic, uRoughness;
+// The dielectric's Fresnel (layered.h: dielectricF0, its F90 specularWeight, and the F0 of what the
+// diffuse loses, diffuseFresnelF0's dielectric part), mixed per fragment with the mapped metal's.
+uniform vec3 uDielectricF0;
+uniform float uDielectricF90, uDiffuseDielectricF0;
 uniform float uNormalScale, uOcclusionStrength;
 uniform vec3 uEmissive;
 // Each map's UV set (0 or 1) and KHR_texture_transform, in MapSlot order (scene.h, TextureSampling).

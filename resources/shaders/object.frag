@@ -52,9 +52,9 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
 // lobe as wide as its share of the GGX lobe (widened by the footprint of R), or the chain at that
 // lobe's level, less what the bright lights put in that lobe; their means weighted by
 // G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
-// multiply; plus the bright lights through the exact BRDF of F0 `f0`, times `layer` (what the coat
-// leaves, or takes). One lookup along R for the mirror.
-vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
+// multiply; plus the bright lights through the exact BRDF of Fresnel `f0`, `f90`, times `layer`
+// (what the coat leaves, or takes). One lookup along R for the mirror.
+vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, float layer) {
     float cosView = clamp(dot(r.normal, r.view), 1e-4, 1.0);
     vec3 t = r.view - cosView * r.normal;
     float tl = length(t);
@@ -100,7 +100,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
         weightB += e;
     }
     vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
-    return split ? lookups + layer * lightsSpecular(r.normal, r.view, r.alpha, f0) : lookups;
+    return split ? lookups + layer * lightsSpecular(r.normal, r.view, r.alpha, f0, f90) : lookups;
 }
 
 // The diffuse base: its read less the bright lights' Lambert share, weighted, plus the lights
@@ -108,7 +108,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float layer) {
 vec3 readDiffuse(FragmentPlan p) {
     vec3 value = readLayer(uDiffuseChain, p.diffuse);
     vec3 exact, lambert;
-    lightsDiffuse(p.specular.normal, p.specular.view, p.f0, exact, lambert);
+    lightsDiffuse(p.specular.normal, p.specular.view, p.diffuseF0, p.f90, exact, lambert);
     return p.wDiffuse * (value - lambert) + (1.0 - p.coatWeight) * p.diffuseColour * exact;
 }
 
@@ -120,10 +120,10 @@ void main() {
     FragmentPlan p = planFragment();
 #ifdef LAYERED
     vec3 diffuse = readDiffuse(p);
-    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, 1.0 - p.coatWeight);
+    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, p.f90, 1.0 - p.coatWeight);
     vec3 coat = vec3(0.0);
     // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
-    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), p.coatWeight);
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), 1.0, p.coatWeight);
     if (p.cut) discard;
     // A blended material's alpha is its coverage (glTF): the renderer blends it over what is
     // behind (object_pass.cpp).

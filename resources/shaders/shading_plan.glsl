@@ -65,6 +65,8 @@ struct FragmentPlan {
                                       // A-weighted lookups)
     vec3 wSpecularEdge, wCoatEdge;    // a GGX layer's B-weighted lookups (layered.glsl)
     vec3 f0, diffuseColour;           // the glTF material at this fragment (with maps, mapped)
+    float f90;                        // its Fresnel at grazing (KHR_materials_specular; else 1)
+    vec3 diffuseF0;                   // the F0 of what its diffuse loses (layered.h)
     float coatWeight;                 // c·Fc(N·v): what the coat takes from the base
     float occlusion;                  // multiplies the sum (1 without maps)
     vec3 emissive;                    // added to it (0 without maps)
@@ -159,6 +161,8 @@ FragmentPlan planFragment() {
         p.wSpecularEdge = vec3(0.0);
         p.wCoatEdge = vec3(0.0);
         p.f0 = vec3(0.0);
+        p.f90 = 1.0;
+        p.diffuseF0 = vec3(0.0);
         p.diffuseColour = vec3(0.0);
         p.coatWeight = 0.0;
         return p;
@@ -171,13 +175,17 @@ FragmentPlan planFragment() {
     // The mapped roughness: each fragment its own GGX lobe.
     if (uUseRoughnessMap) roughness = s.roughness;
     // The weights from the mapped base colour and metallic.
-    p.f0 = mix(vec3(uSpecular), s.baseColor, s.metallic);
+    p.f0 = mix(uDielectricF0, s.baseColor, s.metallic);
+    p.f90 = mix(uDielectricF90, 1.0, s.metallic);
+    p.diffuseF0 = mix(vec3(uDiffuseDielectricF0), s.baseColor, s.metallic);
     p.diffuseColour = s.baseColor * (1.0 - s.metallic);
 #else
     p.f0 = uF0;
+    p.f90 = uF90;
+    p.diffuseF0 = uDiffuseF0;
     p.diffuseColour = uDiffuseColour;
 #endif
-    layerWeightsOf(p.cosView, p.f0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
+    layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
                    p.wCoatEdge, p.coatWeight);
     p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)

@@ -44,6 +44,19 @@ TEST(LibraryAddOptions, ALayerFlagMakesItLayeredWithLambdaAsTheSpecularRoughness
     EXPECT_EQ(o.material.lambda, 0.0f);
 }
 
+TEST(LibraryAddOptions, SpecularWeightAndColourAreKhrMaterialsSpecularsFactors) {
+    const LibraryAddOptions o =
+        addWith({"lib.mglib", "--name", "x", "--specular-weight", "0.25", "--specular-color", "1,0.5,12"});
+    EXPECT_TRUE(o.material.layered);
+    EXPECT_EQ(o.material.layers.specularWeight, 0.25f);
+    EXPECT_EQ(o.material.layers.specularColor, Rgb(1.0f, 0.5f, 12.0f));
+    EXPECT_EQ(usageError([] { addWith({"lib.mglib", "--name", "x", "--specular-weight", "1.5"}); }).find("--specular-weight"),
+              0u);
+    EXPECT_EQ(usageError([] { addWith({"lib.mglib", "--name", "x", "--specular-color", "1,1,20000"}); }),
+              "--specular-color needs three numbers from 0 to 10000 (it multiplies F0, which is then at most 1), got "
+              "1.000000,1.000000,20000.000000");
+}
+
 TEST(LibraryAddOptions, BadValuesAndConflictsAreRefusedInTheirExactWords) {
     EXPECT_EQ(usageError([] { addWith({}); }), "library add needs LIB.mglib");
     EXPECT_EQ(usageError([] { addWith({"--name", "x"}); }), "library add needs LIB.mglib first, got '--name'");

@@ -46,9 +46,10 @@ BrdfCosine gltfBrdfCosine(const GltfBrdf& brdf, const glm::dvec3& n, const glm::
     const glm::dvec3 h = sum / length;
     const double cosHalf = glm::dot(n, h), vh = std::clamp(glm::dot(v, h), 0.0, 1.0);
     const double m = 1.0 - vh, m5 = m * m * m * m * m;
-    const glm::dvec3 fresnel = brdf.f0 + (glm::dvec3(1.0) - brdf.f0) * m5;
+    const glm::dvec3 fresnel = brdf.f0 + (glm::dvec3(brdf.f90) - brdf.f0) * m5;
+    const glm::dvec3 diffuseFresnel = brdf.diffuseF0 + (glm::dvec3(brdf.f90) - brdf.diffuseF0) * m5;
     const double base = 1.0 - coatFresnelWeight(brdf, cosView);
-    out.diffuse = base * (glm::dvec3(1.0) - fresnel) * brdf.diffuse * (cosLight / std::numbers::pi);
+    out.diffuse = base * (glm::dvec3(1.0) - diffuseFresnel) * brdf.diffuse * (cosLight / std::numbers::pi);
     out.specular = base * fresnel * (ggxDistribution(brdf.alpha, cosHalf) * smithVisibility(brdf.alpha, cosLight, cosView) * cosLight);
     if (brdf.clearcoat > 0.0)
         out.coat = glm::dvec3(coatFresnelWeight(brdf, cosView) * ggxDistribution(brdf.coatAlpha, cosHalf) *

@@ -16,9 +16,32 @@ double coatLambda(const Layers& layers) { return exponentToLambda(roughnessToExp
 
 bool hasCoat(const Layers& layers) { return layers.coat > 0.0f; }
 
+namespace {
+float metallicOf(const Layers& layers) { return std::clamp(layers.metallic, 0.0f, 1.0f); }
+float weightOf(const Layers& layers) { return std::clamp(layers.specularWeight, 0.0f, 1.0f); }
+}  // namespace
+
+Rgb dielectricF0(const Layers& layers) {
+    Rgb f0;
+    for (int c = 0; c < 3; ++c) f0[c] = std::min(layers.specular * layers.specularColor[c], 1.0f) * weightOf(layers);
+    return f0;
+}
+
 Rgb specularF0(const Layers& layers) {
-    const float m = std::clamp(layers.metallic, 0.0f, 1.0f);
-    return Rgb(layers.specular) * (1.0f - m) + layers.baseColor * m;
+    const float m = metallicOf(layers);
+    return dielectricF0(layers) * (1.0f - m) + layers.baseColor * m;
+}
+
+float specularF90(const Layers& layers) {
+    const float m = metallicOf(layers);
+    return weightOf(layers) * (1.0f - m) + m;
+}
+
+Rgb diffuseFresnelF0(const Layers& layers) {
+    const float m = metallicOf(layers);
+    const Rgb& c = layers.specularColor;
+    const float strongest = std::min(layers.specular * std::max({c.r, c.g, c.b}), 1.0f) * weightOf(layers);
+    return Rgb(strongest) * (1.0f - m) + layers.baseColor * m;
 }
 
 Rgb diffuseColour(const Layers& layers) { return layers.baseColor * (1.0f - std::clamp(layers.metallic, 0.0f, 1.0f)); }
@@ -47,10 +70,11 @@ LayerWeights ggxLayerWeights(const Layers& layers, double cosView) {
     const GgxAlbedoTable::Albedo e = table.at(layers.roughness, mu);
     const double coatWeight = coatFresnelWeight(gltfBrdfOf(layers), mu);
     const double base = 1.0 - coatWeight;
-    const Rgb f0 = specularF0(layers);
+    const Rgb f0 = specularF0(layers), fd0 = diffuseFresnelF0(layers);
+    const float f90 = specularF90(layers), bd = static_cast<float>(e.diffuseEdge);
     LayerWeights w;
-    w.specular = static_cast<float>(base) * (f0 * static_cast<float>(e.a) + Rgb(static_cast<float>(e.b)));
-    w.diffuse = static_cast<float>(base * (1.0 - e.diffuseEdge)) * diffuseColour(layers) * (Rgb(1.0f) - f0);
+    w.specular = static_cast<float>(base) * (f0 * static_cast<float>(e.a) + Rgb(f90 * static_cast<float>(e.b)));
+    w.diffuse = static_cast<float>(base) * diffuseColour(layers) * (Rgb(1.0f) - fd0 - (Rgb(f90) - fd0) * bd);
     if (coatWeight > 0.0) {
         const GgxAlbedoTable::Albedo c = table.at(layers.coatRoughness, mu);
         w.coat = Rgb(static_cast<float>(coatWeight * (c.a + c.b)));

@@ -35,6 +35,8 @@ glm::dvec3 toD(const Rgb& c) { return glm::dvec3(c); }
 GltfBrdf gltfBrdfOf(const Layers& layers) {
     GltfBrdf brdf;
     brdf.f0 = toD(specularF0(layers));
+    brdf.f90 = specularF90(layers);
+    brdf.diffuseF0 = toD(diffuseFresnelF0(layers));
     brdf.diffuse = toD(diffuseColour(layers));
     brdf.alpha = static_cast<double>(layers.roughness) * layers.roughness;
     brdf.clearcoat = layers.coat;
@@ -60,9 +62,9 @@ constexpr int kSharpLobeStrata = 64;
 
 bool sharpLobe(double width, int baseSize) { return width < 4.0 / std::max(baseSize, 1); }
 
-// ∫ D·V·cos·Fresnel(v·h)·L over the lobe of α at n, v, by sampling: Fresnel F0 + (1 − F0)(1 − v·h)⁵.
-glm::dvec3 sampledLobe(const RadianceTree& environment, double alpha, const glm::dvec3& f0, const glm::dvec3& n,
-                       const glm::dvec3& v) {
+// ∫ D·V·cos·Fresnel(v·h)·L over the lobe of α at n, v, by sampling: Fresnel F0 + (F90 − F0)(1 − v·h)⁵.
+glm::dvec3 sampledLobe(const RadianceTree& environment, double alpha, const glm::dvec3& f0, double f90,
+                       const glm::dvec3& n, const glm::dvec3& v) {
     // The frame N = z, v in the xz half-plane.
     const double mu = std::clamp(glm::dot(n, v), 0.0, 1.0);
     glm::dvec3 t = v - mu * n;
@@ -76,7 +78,7 @@ glm::dvec3 sampledLobe(const RadianceTree& environment, double alpha, const glm:
             const GgxLookup s = ggxLookup(alpha, local, {(i + 0.5) / kSharpLobeStrata, (j + 0.5) / kSharpLobeStrata});
             if (s.weight <= 0.0) continue;
             const glm::dvec3 l = s.light.x * t + s.light.y * b + s.light.z * n;
-            const glm::dvec3 fresnel = f0 + (glm::dvec3(1.0) - f0) * s.fresnelEdge;
+            const glm::dvec3 fresnel = f0 + (glm::dvec3(f90) - f0) * s.fresnelEdge;
             sum += s.weight * fresnel * environment.radianceAt(l);
         }
     return sum / double(kSharpLobeStrata * kSharpLobeStrata);
@@ -96,7 +98,7 @@ MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layer
     const double base = 1.0 - coatFresnelWeight(brdf, mu);
     const RadianceTree::Focus specularFocus = focusOf(brdf.alpha, n, v);
     if (sharpLobe(specularFocus.width, environment.baseSize())) {
-        pixel.specular = base * sampledLobe(environment, brdf.alpha, brdf.f0, n, v);
+        pixel.specular = base * sampledLobe(environment, brdf.alpha, brdf.f0, brdf.f90, n, v);
     } else {
         GltfBrdf bare = brdf;
         bare.clearcoat = 0.0;
@@ -108,7 +110,7 @@ MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layer
     if (brdf.clearcoat > 0.0) {
         const RadianceTree::Focus coatFocus = focusOf(brdf.coatAlpha, n, v);
         if (sharpLobe(coatFocus.width, environment.baseSize())) {
-            pixel.coat = coatFresnelWeight(brdf, mu) * sampledLobe(environment, brdf.coatAlpha, glm::dvec3(1.0), n, v);
+            pixel.coat = coatFresnelWeight(brdf, mu) * sampledLobe(environment, brdf.coatAlpha, glm::dvec3(1.0), 1.0, n, v);
         } else {
             environment.walk(coatFocus, [&](const glm::dvec3& l, const glm::dvec3& energy) {
                 pixel.coat += gltfBrdfCosine(brdf, n, v, l).coat * energy;
@@ -148,7 +150,7 @@ MaterialPixel karisSplitSum(const RadianceTree& environment, const Layers& layer
     MaterialPixel pixel;
     const GgxAlbedoTable::Albedo e = GgxAlbedoTable::shared().at(layers.roughness, mu);
     const double coatWeight = coatFresnelWeight(brdf, mu);
-    const glm::dvec3 specularAlbedo = brdf.f0 * e.a + glm::dvec3(e.b);
+    const glm::dvec3 specularAlbedo = brdf.f0 * e.a + glm::dvec3(brdf.f90 * e.b);
     pixel.specular = (1.0 - coatWeight) * specularAlbedo * prefiltered(brdf.alpha);
     // E(N)/π: the cosine lobe about N.
     glm::dvec3 irradiance(0.0);

@@ -45,11 +45,21 @@ std::string layersProblem(const Layers& layers) {
         {"base colour blue", layers.baseColor.b}, {"metallic", layers.metallic},
         {"roughness", layers.roughness},          {"specular", layers.specular},
         {"coat", layers.coat},                    {"coat roughness", layers.coatRoughness},
+        {"specular weight", layers.specularWeight},
     };
     for (const auto& [name, value] : values)
         if (!(std::isfinite(value) && value >= 0.0f && value <= 1.0f)) {
             std::ostringstream text;
             text << name << ' ' << value << " is not in [0, 1]";
+            return text.str();
+        }
+    for (int c = 0; c < 3; ++c)
+        if (!(std::isfinite(layers.specularColor[c]) && layers.specularColor[c] >= 0.0f &&
+              layers.specularColor[c] <= kMaxSpecularColour)) {
+            std::ostringstream text;
+            const char* channel[] = {"red", "green", "blue"};
+            text << "specular colour " << channel[c] << ' ' << layers.specularColor[c] << " is not in [0, "
+                 << kMaxSpecularColour << "]";
             return text.str();
         }
     const MaterialMaps& m = layers.maps;

@@ -6,6 +6,7 @@
 #include "gltf_writer.h"
 #include "mipgloss/assets/asset.h"
 #include "mipgloss/assets/textures.h"
+#include "mipgloss/scene/layered.h"
 
 #include <gtest/gtest.h>
 
@@ -522,6 +523,53 @@ TEST(GltfMaterials, IorSetsTheDielectricsF0) {
         EXPECT_NEAR(asset.materials.at(0).material.layers.specular, f0, 1e-6f) << "ior " << ior;
         EXPECT_EQ(asset.warnings.size(), warned ? 1u : 0u) << "ior " << ior;
     }
+}
+
+// KHR_materials_specular: its two factors become the layers' specular weight and colour (with
+// KHR_materials_ior's F0 beside them); absent, glTF's defaults; out of range, a warning and the
+// default; its textures named in a warning (the model holds one value per material).
+TEST(GltfMaterials, SpecularExtensionSetsTheDielectricsWeightAndColour) {
+    using Object = tinygltf::Value::Object;
+    using Array = tinygltf::Value::Array;
+    auto load = [](const Object& specular) {
+        GltfWriter w;
+        tinygltf::Material m = pbrMaterial("Satin", {0.5, 0.5, 0.5, 1}, 0, 0.4);
+        m.extensions["KHR_materials_specular"] = tinygltf::Value(specular);
+        m.extensions["KHR_materials_ior"] = tinygltf::Value(Object{{"ior", tinygltf::Value(2.0)}});
+        w.model().extensionsUsed = {"KHR_materials_specular", "KHR_materials_ior"};
+        w.model().extensionsRequired = {"KHR_materials_specular"};
+        w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(m))));
+        return loadGlb(w);
+    };
+    const Asset set = load(Object{{"specularFactor", tinygltf::Value(0.25)},
+                                  {"specularColorFactor", tinygltf::Value(Array{tinygltf::Value(1.0), tinygltf::Value(0.5),
+                                                                                tinygltf::Value(12.0)})}});
+    const Layers& l = set.materials.at(0).material.layers;
+    EXPECT_FLOAT_EQ(l.specularWeight, 0.25f);
+    EXPECT_EQ(l.specularColor, Rgb(1.0f, 0.5f, 12.0f));
+    EXPECT_NEAR(l.specular, 1.0f / 9.0f, 1e-6f);
+    EXPECT_TRUE(set.warnings.empty()) << set.warnings.front();
+    // The dielectric's F0: min(F0_ior · colour, 1) · weight, per channel.
+    const Rgb f0 = dielectricF0(l);
+    EXPECT_NEAR(f0.r, 0.25f / 9.0f, 1e-6f);
+    EXPECT_NEAR(f0.g, 0.125f / 9.0f, 1e-6f);
+    EXPECT_NEAR(f0.b, 0.25f, 1e-6f);
+    EXPECT_FLOAT_EQ(specularF90(l), 0.25f);
+
+    const Asset defaults = load(Object{});
+    EXPECT_EQ(defaults.materials.at(0).material.layers.specularColor, Rgb(1.0f));
+    EXPECT_FLOAT_EQ(defaults.materials.at(0).material.layers.specularWeight, 1.0f);
+
+    const Asset bad = load(Object{{"specularFactor", tinygltf::Value(1.5)},
+                                  {"specularColorFactor", tinygltf::Value(Array{tinygltf::Value(1.0)})},
+                                  {"specularTexture", tinygltf::Value(Object{{"index", tinygltf::Value(0)}})}});
+    EXPECT_FLOAT_EQ(bad.materials.at(0).material.layers.specularWeight, 1.0f);
+    EXPECT_EQ(bad.materials.at(0).material.layers.specularColor, Rgb(1.0f));
+    ASSERT_EQ(bad.warnings.size(), 3u);
+    EXPECT_CONTAINS(bad.warnings[0], "specularFactor");
+    EXPECT_CONTAINS(bad.warnings[1], "specularColorFactor");
+    EXPECT_CONTAINS(bad.warnings[2], "specularTexture");
+    EXPECT_CONTAINS(bad.warnings[2], "Satin");
 }
 
 TEST(GltfMaterials, ExternalImagesAreFilesBesideTheGltfWithTheUriDecoded) {

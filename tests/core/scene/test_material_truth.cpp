@@ -3,6 +3,7 @@
 // times finer tolerance on real maps (its own accuracy, stated).
 #include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/io/import.h"
+#include "mipgloss/scene/layered.h"
 #include "mipgloss/scene/material_truth.h"
 
 #include <glm/geometric.hpp>
@@ -57,6 +58,42 @@ TEST(MaterialTruth, AWhiteDielectricReturnsMoreThanOneAtGrazingAsTheSpecificatio
     for (double mu : {1.0, 0.5, 0.1}) {
         const double diffuse = materialTruth(white, plastic, n, viewAt(mu)).diffuse.y;
         EXPECT_NEAR(diffuse, 0.96 * (1.0 - GgxAlbedoTable::shared().at(0.3, mu).diffuseEdge), 0.004) << mu;
+    }
+}
+
+// KHR_materials_specular in a white furnace. Weight 0 leaves a pure Lambertian (no specular, the
+// diffuse exactly the base colour: the extension's "a pure diffuse material"). Otherwise the
+// specular is F0·A + F90·B per channel with F0 = min(F0_ior·colour, 1)·weight and F90 = weight,
+// and the diffuse c·(1 − w·max F) averaged: c·(1 − Fd0 − (F90 − Fd0)·Bd), Fd0 = w·min(F0_ior·max
+// colour, 1); the picture's weights (ggxLayerWeights) are the same.
+TEST(MaterialTruth, SpecularWeightAndColourSetTheDielectricsFresnelAsKhrMaterialsSpecularSays) {
+    const RadianceTree white{CubeMap(32, Rgb(1.0f))};
+    const glm::dvec3 n(0, 0, 1);
+    Layers matte = layersOf(Rgb(0.6f, 0.5f, 0.4f), 0.0f, 0.4f);
+    matte.specularWeight = 0.0f;
+    for (double mu : {1.0, 0.5, 0.1}) {
+        const MaterialPixel p = materialTruth(white, matte, n, viewAt(mu));
+        EXPECT_NEAR(p.specular.y, 0.0, 1e-12) << mu;
+        EXPECT_NEAR(p.diffuse.x, 0.6, 0.003) << mu;
+        EXPECT_NEAR(p.diffuse.z, 0.4, 0.002) << mu;
+    }
+    Layers tinted = layersOf(Rgb(0.6f, 0.5f, 0.4f), 0.0f, 0.4f);
+    tinted.specular = 1.0f / 9.0f;  // ior 2
+    tinted.specularColor = Rgb(1.0f, 0.5f, 12.0f);
+    tinted.specularWeight = 0.5f;
+    const double w = 0.5, f0[3] = {w / 9.0, w * 0.5 / 9.0, w * 1.0}, fd0 = w * 1.0;
+    for (double mu : {1.0, 0.6, 0.3, 0.1}) {
+        const GgxAlbedoTable::Albedo e = GgxAlbedoTable::shared().at(0.4, mu);
+        const MaterialPixel p = materialTruth(white, tinted, n, viewAt(mu));
+        const LayerWeights picture = ggxLayerWeights(tinted, mu);
+        for (int c = 0; c < 3; ++c) {
+            const double specular = f0[c] * e.a + w * e.b;
+            const double diffuse = tinted.baseColor[c] * (1.0 - fd0 - (w - fd0) * e.diffuseEdge);
+            EXPECT_NEAR(p.specular[c], specular, 0.005 * specular + 0.002) << "N·v " << mu << " channel " << c;
+            EXPECT_NEAR(p.diffuse[c], diffuse, 0.005 * diffuse + 0.002) << "N·v " << mu << " channel " << c;
+            EXPECT_NEAR(picture.specular[c], specular, 1e-5) << "N·v " << mu << " channel " << c;
+            EXPECT_NEAR(picture.diffuse[c], diffuse, 1e-5) << "N·v " << mu << " channel " << c;
+        }
     }
 }
 

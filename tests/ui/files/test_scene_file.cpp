@@ -622,6 +622,8 @@ TEST(SceneFile, LayeredMaterialsRoundTripAndBadLayersAreRefused) {
     Material paint;
     paint.layered = true;
     paint.layers = {Rgb(0.1f, 0.3f, 0.7f), 0.25f, 0.4f, 0.05f, 0.8f, 0.02f, MaterialMaps{}};
+    paint.layers.specularColor = Rgb(1.0f, 0.5f, 12.0f);  // KHR_materials_specular, above 1 allowed
+    paint.layers.specularWeight = 0.3f;
     scene.addObject(ball, paint);
     const fs::path file = fs::path(dir.path().toStdString()) / "layered.mipgloss";
     saveScene(scene, file);
@@ -634,11 +636,24 @@ TEST(SceneFile, LayeredMaterialsRoundTripAndBadLayersAreRefused) {
         "objects": [{"mesh": "builtin:sphere", "material": "m"}]})");
     EXPECT_NE(bad.find("bad.json"), std::string::npos) << bad;
     EXPECT_NE(bad.find("materials[0].layers.coatRoughness"), std::string::npos) << bad;
+    const std::string tint = loadError(dir, "tint.json", R"({"format": "mipgloss-scene", "version": 5,
+        "materials": [{"name": "m", "layers": {"specularColor": [1, -0.5, 1]}}],
+        "objects": [{"mesh": "builtin:sphere", "material": "m"}]})");
+    EXPECT_NE(tint.find("materials[0].layers.specularColor[1]"), std::string::npos) << tint;
+    const std::string weight = loadError(dir, "weight.json", R"({"format": "mipgloss-scene", "version": 5,
+        "materials": [{"name": "m", "layers": {"specularWeight": 2}}],
+        "objects": [{"mesh": "builtin:sphere", "material": "m"}]})");
+    EXPECT_NE(weight.find("materials[0].layers.specularWeight"), std::string::npos) << weight;
 
     const Scene old = loadScene(writeScene(dir, "v4.json", R"({"format": "mipgloss-scene", "version": 4,
         "materials": [{"name": "m", "lambda": 3}], "objects": [{"mesh": "builtin:sphere", "material": "m"}]})"));
     EXPECT_FALSE(old.materialOf(old.objects[0]).layered);
     EXPECT_EQ(old.materialOf(old.objects[0]).lambda, 3.0f);
+    // Written before KHR_materials_specular: glTF's defaults.
+    const Scene plain = loadScene(writeScene(dir, "v5.json", R"({"format": "mipgloss-scene", "version": 5,
+        "materials": [{"name": "m", "layers": {"roughness": 0.3}}], "objects": [{"mesh": "builtin:sphere", "material": "m"}]})"));
+    EXPECT_EQ(plain.materialOf(plain.objects[0]).layers.specularColor, Rgb(1.0f));
+    EXPECT_EQ(plain.materialOf(plain.objects[0]).layers.specularWeight, 1.0f);
 }
 
 TEST(SceneFile, MaterialNamesMustResolveAndBeUnique) {

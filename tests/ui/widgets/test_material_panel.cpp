@@ -487,6 +487,15 @@ TEST(MaterialPanel, LayeredEditorSpeaksRoughnessMetalAndCoatKeptInStep) {
     doc.undoStack()->undo();
     EXPECT_EQ(doc.materialOf(0).layers.metallic, 0.0f);
     EXPECT_EQ(metallic->value(), 0.0);
+    // KHR_materials_specular's weight: one undo step, shown again from the document.
+    auto* specularWeight = child<QDoubleSpinBox>(panel, "specularWeightSpin");
+    ASSERT_TRUE(specularWeight && child<QPushButton>(panel, "specularColorButton"));
+    EXPECT_EQ(specularWeight->value(), 1.0);
+    typeInto(specularWeight, QStringLiteral("0.25"));
+    EXPECT_FLOAT_EQ(doc.materialOf(0).layers.specularWeight, 0.25f);
+    doc.undoStack()->undo();
+    EXPECT_EQ(doc.materialOf(0).layers.specularWeight, 1.0f);
+    EXPECT_EQ(specularWeight->value(), 1.0);
     // For a human to look at: the panel as it shows a layered material.
     std::filesystem::create_directories(MIPGLOSS_TEST_OUTPUT_DIR);
     panel.grab().save(QStringLiteral(MIPGLOSS_TEST_OUTPUT_DIR "/material_panel_layered.png"));

@@ -42,6 +42,10 @@ Layers admittedLayers(Layers l) {
     l.metallic = unit(l.metallic, defaults.metallic);
     l.roughness = unit(l.roughness, defaults.roughness);
     l.specular = unit(l.specular, defaults.specular);
+    for (int c = 0; c < 3; ++c)
+        l.specularColor[c] = std::isnan(l.specularColor[c]) ? defaults.specularColor[c]
+                                                            : std::clamp(l.specularColor[c], 0.0f, kMaxSpecularColour);
+    l.specularWeight = unit(l.specularWeight, defaults.specularWeight);
     l.coat = unit(l.coat, defaults.coat);
     l.coatRoughness = unit(l.coatRoughness, defaults.coatRoughness);
     return l;

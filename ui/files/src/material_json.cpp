@@ -101,6 +101,8 @@ QJsonObject materialToJson(const Material& m, const std::filesystem::path& fileF
                              {"roughness", l.roughness},
                              {"specularExponent", exponentJson(roughnessToExponent(l.roughness))},
                              {"specular", l.specular},
+                             {"specularColor", vec3ToJson(l.specularColor)},
+                             {"specularWeight", l.specularWeight},
                              {"coat", l.coat},
                              {"coatRoughness", l.coatRoughness},
                              {"coatExponent", exponentJson(roughnessToExponent(l.coatRoughness))},
@@ -243,6 +245,13 @@ Layers JsonReader::layers(const QJsonObject& o, const std::string& where) const 
     l.metallic = unit("metallic", l.metallic);
     l.roughness = unit("roughness", l.roughness);
     l.specular = unit("specular", l.specular);
+    // KHR_materials_specular (scene.h): optional, so files written before it read as glTF's default.
+    l.specularColor = vec3(o, "specularColor", where, l.specularColor);
+    for (int c = 0; c < 3; ++c)
+        if (!(l.specularColor[c] >= 0.0f && l.specularColor[c] <= kMaxSpecularColour))
+            fail("\"" + keyName(where, "specularColor") + "[" + std::to_string(c) + "]\" is " + show(l.specularColor[c]) +
+                 ": a specular colour component must be in [0, " + show(kMaxSpecularColour) + "]");
+    l.specularWeight = unit("specularWeight", l.specularWeight);
     l.coat = unit("coat", l.coat);
     l.coatRoughness = unit("coatRoughness", l.coatRoughness);
     const QJsonValue maps = o.value(QLatin1String("maps"));

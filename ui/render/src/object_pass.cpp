@@ -20,6 +20,8 @@ namespace mipgloss::ui {
 struct Renderer::Impl::LayeredUniforms {
     explicit LayeredUniforms(QOpenGLShaderProgram& p)
         : f0(p.uniformLocation("uF0")),
+          f90(p.uniformLocation("uF90")),
+          diffuseF0(p.uniformLocation("uDiffuseF0")),
           diffuseColour(p.uniformLocation("uDiffuseColour")),
           specularRoughness(p.uniformLocation("uSpecularRoughness")),
           coat(p.uniformLocation("uCoat")),
@@ -29,7 +31,7 @@ struct Renderer::Impl::LayeredUniforms {
           diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")),
           specularEntries(p.uniformLocation("uSpecularEntries")),
           coatEntries(p.uniformLocation("uCoatEntries")) {}
-    int f0, diffuseColour, specularRoughness, coat, coatRoughness, useCoatStack, useDiffuseStack,
+    int f0, f90, diffuseF0, diffuseColour, specularRoughness, coat, coatRoughness, useCoatStack, useDiffuseStack,
         diffuseIrradiance, specularEntries, coatEntries;
 };
 
@@ -54,7 +56,9 @@ struct Renderer::Impl::MapUniforms {
           baseAlpha(p.uniformLocation("uBaseAlpha")),
           metallic(p.uniformLocation("uMetallic")),
           roughness(p.uniformLocation("uRoughness")),
-          specular(p.uniformLocation("uSpecular")),
+          dielectricF0(p.uniformLocation("uDielectricF0")),
+          dielectricF90(p.uniformLocation("uDielectricF90")),
+          diffuseDielectricF0(p.uniformLocation("uDiffuseDielectricF0")),
           normalScale(p.uniformLocation("uNormalScale")),
           occlusionStrength(p.uniformLocation("uOcclusionStrength")),
           emissive(p.uniformLocation("uEmissive")),
@@ -66,8 +70,8 @@ struct Renderer::Impl::MapUniforms {
                                       "uUseNormalMap", "uUseOcclusionMap", "uUseEmissiveMap"};
         for (int i = 0; i < kMapCount; ++i) uses[i] = p.uniformLocation(use[i]);
     }
-    int metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, specular,
-        normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff, texCoords, transforms;
+    int metallicChannel, roughnessChannel, baseColor, baseAlpha, metallic, roughness, dielectricF0, dielectricF90,
+        diffuseDielectricF0, normalScale, occlusionStrength, emissive, alphaMode, alphaCutoff, texCoords, transforms;
     int uses[kMapCount];  // the samplers' units are set once (texture_units.h)
 };
 
@@ -141,7 +145,12 @@ bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
     gl->glUniform1f(u.baseAlpha, m.baseAlpha);
     gl->glUniform1f(u.metallic, l.metallic);
     gl->glUniform1f(u.roughness, l.roughness);
-    gl->glUniform1f(u.specular, l.specular);
+    // The dielectric's Fresnel alone (metallic 0); the shader mixes it with the mapped metal's.
+    Layers dielectric = l;
+    dielectric.metallic = 0.0f;
+    gl->glUniform3fv(u.dielectricF0, 1, glm::value_ptr(dielectricF0(l)));
+    gl->glUniform1f(u.dielectricF90, specularF90(dielectric));
+    gl->glUniform1f(u.diffuseDielectricF0, diffuseFresnelF0(dielectric).r);
     gl->glUniform1f(u.normalScale, m.normalScale);
     gl->glUniform1f(u.occlusionStrength, m.occlusionStrength);
     gl->glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissiveFactor));
@@ -184,6 +193,8 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
     auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
     gl->glUniform3fv(u.f0, 1, glm::value_ptr(specularF0(m.layers)));
+    gl->glUniform1f(u.f90, specularF90(m.layers));
+    gl->glUniform3fv(u.diffuseF0, 1, glm::value_ptr(diffuseFresnelF0(m.layers)));
     gl->glUniform3fv(u.diffuseColour, 1, glm::value_ptr(diffuseColour(m.layers)));
     set1f(u.specularRoughness, m.layers.roughness);
     set1f(u.coat, plan.hasCoat ? m.layers.coat : 0.0f);

@@ -533,6 +533,17 @@ void MaterialPanel::buildLayeredEditor(QWidget* parent) {
                              "and skin, water is 0.02, gems up to about 0.08. Every reflection still grows "
                              "toward the silhouette."));
     form->addRow(tr("Specular"), specular_);
+    specularColor_ = new QPushButton(tr("Choose…"), layered_);
+    specularColor_->setObjectName(QStringLiteral("specularColorButton"));
+    specularWeight_ = makeSpin(layered_, QStringLiteral("specularWeightSpin"), 0.0, 1.0, 3, 0.01);
+    specularWeight_->setPrefix(tr("weight "));
+    specularWeight_->setToolTip(tr("How strongly a non-metal reflects at every angle, its edges included: 1 as "
+                                   "glTF's plain material, 0 a purely matte surface (the light it no longer "
+                                   "reflects goes to its colour). Metals are untouched."));
+    auto* specularRow = new QHBoxLayout;
+    specularRow->addWidget(specularColor_);
+    specularRow->addWidget(specularWeight_, 1);
+    form->addRow(tr("Specular tint"), specularRow);
 
     form->addRow(tr("Clear coat"),
                  unitRow(QStringLiteral("coat"), coatSlider_, coat_,
@@ -557,8 +568,8 @@ void MaterialPanel::buildLayeredEditor(QWidget* parent) {
 
 void MaterialPanel::connectLayeredEditor() {
     for (QWidget* w : std::initializer_list<QWidget*>{metallicSlider_, metallic_, roughnessSlider_, roughness_,
-                                                      roughnessLambda_, roughnessExponent_, specular_, coatSlider_,
-                                                      coat_, coatRoughness_})
+                                                      roughnessLambda_, roughnessExponent_, specular_, specularWeight_,
+                                                      coatSlider_, coat_, coatRoughness_})
         sessions_->track(w);
     auto unit = [this](QSlider* slider, QDoubleSpinBox* spin, float Layers::*field) {
         connect(slider, &QSlider::valueChanged, this, [this, slider, field](int v) {
@@ -575,6 +586,9 @@ void MaterialPanel::connectLayeredEditor() {
     connect(specular_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         editLayers([v](Layers& l) { l.specular = static_cast<float>(v); }, specular_);
     });
+    connect(specularWeight_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        editLayers([v](Layers& l) { l.specularWeight = static_cast<float>(v); }, specularWeight_);
+    });
     connect(coatRoughness_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         editLayers([v](Layers& l) { l.coatRoughness = static_cast<float>(v); }, coatRoughness_);
     });
@@ -587,6 +601,7 @@ void MaterialPanel::connectLayeredEditor() {
         editLayers([r](Layers& l) { l.roughness = r; }, roughnessExponent_);
     });
     connect(baseColor_, &QPushButton::clicked, this, &MaterialPanel::chooseBaseColor);
+    connect(specularColor_, &QPushButton::clicked, this, &MaterialPanel::chooseSpecularColor);
     connect(layeredIrradiance_, &QCheckBox::toggled, this,
             [this](bool on) { editMaterial([on](Material& m) { m.useIrradiance = on; }); });
 }
@@ -600,7 +615,7 @@ void MaterialPanel::refreshLayers(const Material& m) {
     const Layers& l = m.layers;
     const QSignalBlocker b1(metallicSlider_), b2(metallic_), b3(roughnessSlider_), b4(roughness_),
         b5(roughnessLambda_), b6(roughnessExponent_), b7(specular_), b8(coatSlider_), b9(coat_), b10(coatRoughness_),
-        b11(layeredIrradiance_);
+        b11(layeredIrradiance_), b12(specularWeight_);
     metallicSlider_->setValue(static_cast<int>(std::lround(l.metallic * kUnitSliderSteps)));
     metallic_->setValue(l.metallic);
     roughnessSlider_->setValue(static_cast<int>(std::lround(l.roughness * kUnitSliderSteps)));
@@ -610,6 +625,7 @@ void MaterialPanel::refreshLayers(const Material& m) {
     const double shownStep = std::pow(10.0, -roughnessExponent_->decimals());
     roughnessExponent_->setValue(std::isinf(n) ? kExponentBoxTop : std::min(n, kExponentBoxTop - shownStep));
     specular_->setValue(l.specular);
+    specularWeight_->setValue(l.specularWeight);
     coatSlider_->setValue(static_cast<int>(std::lround(l.coat * kUnitSliderSteps)));
     coat_->setValue(l.coat);
     coatRoughness_->setValue(l.coatRoughness);
@@ -638,6 +654,24 @@ void MaterialPanel::refreshLayers(const Material& m) {
     baseColor_->setToolTip(colourTip(
         tr("The surface's own colour: the matte layer of plastic, paint or wood, the reflection of a metal."),
         l.baseColor));
+    // A colour above 1 (glTF allows it: F0 is clamped after the product) shows clipped in the
+    // swatch; the tooltip gives the values.
+    specularColor_->setIcon(swatch(colorFromLinear(glm::min(l.specularColor, Rgb(1.0f)))));
+    specularColor_->setToolTip(colourTip(
+        tr("Tints a non-metal's reflection seen head-on (its F0 times this colour, at most 1); toward the "
+           "edges it turns white. White is glTF's plain material."),
+        l.specularColor));
+}
+
+void MaterialPanel::chooseSpecularColor() {
+    const int index = document_->selected();
+    if (!document_->isValidIndex(index)) return;
+    const QColor chosen =
+        QColorDialog::getColor(colorFromLinear(glm::min(document_->materialOf(index).layers.specularColor, Rgb(1.0f))),
+                               this, tr("Specular tint (shown in sRGB, stored linear)"));
+    if (!chosen.isValid()) return;  // cancelled
+    const Rgb colour = glm::clamp(linearFromColor(chosen), Rgb(0.0f), Rgb(1.0f));
+    editMaterial([colour](Material& m) { m.layers.specularColor = colour; });
 }
 
 void MaterialPanel::chooseBaseColor() {

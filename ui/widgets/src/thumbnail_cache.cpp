@@ -76,7 +76,8 @@ ThumbnailCache::Key ThumbnailCache::keyOf(const Material& m) {
     const Layers& l = m.layers;
     return {m.lambda,      static_cast<int>(m.mode), m.useIrradiance, m.tint.r,    m.tint.g,  m.tint.b,
             m.sharperAtGrazing, m.layered,         l.baseColor.r,   l.baseColor.g, l.baseColor.b, l.metallic,
-            l.roughness,   l.specular,               l.coat,          l.coatRoughness};
+            l.roughness,   l.specular,               l.coat,          l.coatRoughness,
+            l.specularColor.r, l.specularColor.g, l.specularColor.b, l.specularWeight};
 }
 
 QPixmap ThumbnailCache::thumbnail(const Material& material) const {

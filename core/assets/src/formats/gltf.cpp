@@ -44,6 +44,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_emissive_strength", // multiplies emissiveFactor
     "KHR_materials_clearcoat",         // the coat layer (its factors; its textures are named in a warning)
     "KHR_materials_ior",               // the dielectric's F0
+    "KHR_materials_specular",          // the dielectric's F0 colour and weight (its factors; its textures named)
     "KHR_texture_transform",           // each map's UV offset, rotation, scale and set
 };
 
@@ -541,6 +542,40 @@ public:
                     warn(at + ": KHR_materials_ior's ior " + std::to_string(ior) +
                          " is not in [1, 10]; glTF's 1.5 is used");
                 }
+            }
+            // KHR_materials_specular: the dielectric's F0 = min(F0_ior · specularColorFactor, 1) ·
+            // specularFactor and F90 = specularFactor (Layers::specularColor, specularWeight;
+            // layered.h). Its two textures would multiply the factors per texel; the model holds
+            // one value per material, so they are named rather than dropped in silence.
+            if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end()) {
+                const tinygltf::Value& e = it->second;
+                if (e.Has("specularFactor")) {
+                    const tinygltf::Value& v = e.Get("specularFactor");
+                    const double f = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+                    if (std::isfinite(f) && f >= 0.0 && f <= 1.0)
+                        l.specularWeight = static_cast<float>(f);
+                    else
+                        warn(at + ": KHR_materials_specular's specularFactor is not a number in [0, 1]; 1 is used");
+                }
+                if (e.Has("specularColorFactor")) {
+                    const tinygltf::Value& v = e.Get("specularColorFactor");
+                    bool valid = v.IsArray() && v.ArrayLen() == 3;
+                    Rgb colour(1.0f);
+                    for (int c = 0; valid && c < 3; ++c) {
+                        const tinygltf::Value& x = v.Get(c);
+                        const double value = x.IsNumber() ? x.GetNumberAsDouble() : -1.0;
+                        valid = std::isfinite(value) && value >= 0.0 && value <= double(kMaxSpecularColour);
+                        colour[c] = static_cast<float>(value);
+                    }
+                    if (valid)
+                        l.specularColor = colour;
+                    else
+                        warn(at + ": KHR_materials_specular's specularColorFactor is not three numbers in [0, " +
+                             std::to_string(int(kMaxSpecularColour)) + "]; [1, 1, 1] is used");
+                }
+                for (const char* map : {"specularTexture", "specularColorTexture"})
+                    if (e.Has(map))
+                        warn(at + ": KHR_materials_specular's " + map + " is not read (the specular is its factors alone)");
             }
             if (g.alphaMode == "MASK") l.maps.alphaMode = AlphaMode::Mask;
             else if (g.alphaMode == "BLEND") l.maps.alphaMode = AlphaMode::Blend;

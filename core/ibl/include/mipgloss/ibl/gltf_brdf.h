@@ -11,6 +11,10 @@
 // and the clear coat (KHR_materials_clearcoat, "Layering"), with its Fresnel at V·N, not V·H:
 //   coated = mix(f, D_c·V_c, clearcoat · (0.04 + 0.96 (1 − V·N)⁵)),  α_c = clearcoatRoughness².
 // The dielectric F0 is a parameter (0.04 in glTF; Layers::specular) so the same code serves both.
+// KHR_materials_specular (with KHR_materials_ior) generalizes F: F = F0 + (F90 − F0)(1 − V·H)⁵, the
+// dielectric's F0 = min(F0_ior · specularColor, 1) · specularWeight and F90 = specularWeight, and
+// the diffuse keeps 1 − specularWeight · max_channel(F) (its fresnel_mix), which in the mixed form
+// above is 1 − Fd with Fd of F0 `diffuseF0` and the same F90 (layered.h: diffuseFresnelF0).
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -28,6 +32,8 @@ double smithMasking(double alpha, double cosine);
 // A layered material as the glTF BRDF reads it (material_truth.h makes one from Layers).
 struct GltfBrdf {
     glm::dvec3 f0{0.04};       // mix(dielectric F0, base, metallic)
+    double f90 = 1.0;          // mix(specularWeight, 1, metallic)
+    glm::dvec3 diffuseF0{0.04};  // the F0 of what the diffuse loses (f0 without KHR_materials_specular)
     glm::dvec3 diffuse{0.0};   // c_diff = base·(1 − metallic)
     double alpha = 0.25;       // roughness²
     double clearcoat = 0.0;    // the coat's weight, 0: none

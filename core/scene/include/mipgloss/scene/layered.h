@@ -32,7 +32,16 @@ double specularLambda(const Layers& layers);
 double coatLambda(const Layers& layers);
 bool hasCoat(const Layers& layers);
 
+// The Fresnel terms (glTF 2.0 Appendix B with KHR_materials_specular and KHR_materials_ior): the
+// dielectric's F0 = min(specular · specularColor, 1) · specularWeight and F90 = specularWeight;
+// specularF0/F90 mix them with the metal's (baseColor, 1) by metallic. The diffuse loses what the
+// extension's fresnel_mix takes, specularWeight · max over channels of F, whose F0 is
+// diffuseFresnelF0 (the dielectric's max channel, mixed with the metal's likewise) and F90
+// specularF90. Without the extension (colour 1, weight 1) all three are glTF's F0 and 1.
+Rgb dielectricF0(const Layers& layers);
 Rgb specularF0(const Layers& layers);
+float specularF90(const Layers& layers);
+Rgb diffuseFresnelF0(const Layers& layers);
 Rgb diffuseColour(const Layers& layers);
 
 struct LayerWeights {
@@ -48,8 +57,9 @@ LayerWeights layerWeights(const Layers& layers, double cosView,
 // The glTF material's weights at N·v (layered.glsl, layerWeightsOf; docs/material-truth.md): what
 // each layer returns in a uniform white environment, from the exact albedo table (ggx_sampling.h).
 //   coat      c·Fc·(A_c + B_c),  Fc = 0.04 + 0.96 (1 − N·v)⁵
-//   specular  (1 − c·Fc)·(F0·A + B)
-//   diffuse   (1 − c·Fc)·c_diff·(1 − F0)(1 − Bd)
+//   specular  (1 − c·Fc)·(F0·A + F90·B)
+//   diffuse   (1 − c·Fc)·c_diff·(1 − Fd0 − (F90 − Fd0)·Bd)   Fd0 = diffuseFresnelF0
+//             (with F90 = 1: (1 − F0)(1 − Bd))
 LayerWeights ggxLayerWeights(const Layers& layers, double cosView);
 
 // Every λ a material reads (its lobes in use, for stack entries and the chain's depth): the single

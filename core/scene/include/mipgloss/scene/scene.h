@@ -138,9 +138,17 @@ struct Layers {
     float coat = 0.0f;           // clear coat weight (0: none)
     float coatRoughness = 0.05f; // its lobe; its F0 is kDielectricF0
     MaterialMaps maps;           // texture maps (assets); none by default
+    // KHR_materials_specular (layered.h, dielectricF0): the dielectric's F0 is
+    // min(specular · specularColor, 1) · specularWeight and its F90 specularWeight; the metal is
+    // untouched. specularColor is in [0, kMaxSpecularColour] (the extension bounds it only by the
+    // clamp to 1 after the product), specularWeight in [0, 1].
+    Rgb specularColor{1.0f};
+    float specularWeight = 1.0f;
 
     bool operator==(const Layers&) const = default;
 };
+// The largest specularColor component: F0 = 1 at an ior of 1.02 (F0 0.0001) and beyond.
+inline constexpr float kMaxSpecularColour = 10000.0f;
 
 struct Material {
     // The artist's blur: the Phong exponent n(λ) of phong.h, the same lobe under any environment

@@ -85,6 +85,7 @@ private:
     void renameMaterial();
     void chooseTint();
     void chooseBaseColor();
+    void chooseSpecularColor();
     void buildLayeredEditor(QWidget* parent);
     void connectLayeredEditor();
     void refreshLayers(const Material& m);
@@ -118,6 +119,9 @@ private:
     QDoubleSpinBox* roughnessLambda_ = nullptr;
     QDoubleSpinBox* roughnessExponent_ = nullptr;
     QDoubleSpinBox* specular_ = nullptr;
+    // KHR_materials_specular: the dielectric's reflection colour and strength (scene.h).
+    QPushButton* specularColor_ = nullptr;
+    QDoubleSpinBox* specularWeight_ = nullptr;
     QSlider* coatSlider_ = nullptr;
     QDoubleSpinBox* coat_ = nullptr;
     QDoubleSpinBox* coatRoughness_ = nullptr;

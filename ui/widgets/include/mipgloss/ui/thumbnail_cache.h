@@ -83,7 +83,7 @@ signals:
 private:
     // Material is compared field by field (colours as three floats): the cache's key.
     using Key = std::tuple<float, int, bool, float, float, float, bool, bool, float, float, float, float, float,
-                           float, float, float>;
+                           float, float, float, float, float, float, float>;
     static Key keyOf(const Material& material);
     struct Picture {
         QPixmap pixmap;
