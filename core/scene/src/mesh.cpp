@@ -140,6 +140,7 @@ namespace {
 // the corners' attributes in, one tangent per corner out.
 struct TangentJob {
     const Mesh* mesh = nullptr;
+    const std::vector<glm::vec2>* uvs = nullptr;  // the set the normal map reads
     std::vector<glm::vec4> corners;  // per triangle corner: xyz, w the bitangent's sign
 
     static TangentJob& of(const SMikkTSpaceContext* context) { return *static_cast<TangentJob*>(context->m_pUserData); }
@@ -168,7 +169,7 @@ void mikkNormal(const SMikkTSpaceContext* context, float out[], int face, int co
 // glTF's.
 void mikkTexCoord(const SMikkTSpaceContext* context, float out[], int face, int corner) {
     const TangentJob& job = TangentJob::of(context);
-    const glm::vec2& uv = job.mesh->uvs[job.vertex(face, corner)];
+    const glm::vec2& uv = (*job.uvs)[job.vertex(face, corner)];
     out[0] = uv.x, out[1] = 1.0f - uv.y;
 }
 void mikkSetTangent(const SMikkTSpaceContext* context, const float tangent[], float sign, int face, int corner) {
@@ -198,12 +199,21 @@ std::uint32_t duplicateVertex(Mesh& mesh, std::uint32_t vertex) {
     return static_cast<std::uint32_t>(mesh.positions.size() - 1);
 }
 
-void computeTangents(Mesh& mesh) {
+void computeTangents(Mesh& mesh, int uvSet, const glm::mat3& uvTransform) {
     const std::size_t n = mesh.positions.size();
     mesh.tangents.clear();
-    if (mesh.uvs.size() != n || mesh.normals.size() != n) return;
+    const std::vector<glm::vec2>& set = uvSet == 1 ? mesh.uvs1 : mesh.uvs;
+    if (set.size() != n || mesh.normals.size() != n) return;
+    // The UVs the map is sampled at: its frame is the derivative of the position along them.
+    std::vector<glm::vec2> transformed;
+    if (uvTransform != glm::mat3(1.0f)) {
+        transformed.reserve(n);
+        for (const glm::vec2& uv : set) transformed.emplace_back(uvTransform * glm::vec3(uv, 1.0f));
+    }
+    const std::vector<glm::vec2>& uvs = transformed.empty() ? set : transformed;
     TangentJob job;
     job.mesh = &mesh;
+    job.uvs = &uvs;
     job.corners.assign(mesh.indices.size(), glm::vec4(0.0f));
     SMikkTSpaceInterface callbacks{};
     callbacks.m_getNumFaces = mikkFaceCount;

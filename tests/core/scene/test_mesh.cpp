@@ -4,6 +4,9 @@
 #include "test_support.h"
 
 #include <glm/geometric.hpp>
+#include <glm/mat2x2.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -134,6 +137,40 @@ TEST(MeshTangents, FollowUAndPointTheBitangentUpTheImage) {
         expectNear(glm::vec3(quad.tangents[v]), {1, 0, 0}, 1e-5f, "tangent " + std::to_string(v));
         EXPECT_EQ(quad.tangents[v].w, 1.0f);
         expectNear(bitangentOf(quad, v), {0, 1, 0}, 1e-5f, "bitangent " + std::to_string(v));
+    }
+}
+
+// The frame follows the UVs the normal map reads: on UV set 1 (here u along −y, v along −x), and
+// through KHR_texture_transform's matrix (a quarter turn and a mirror of u): each time the tangent
+// is the direction in which the sampled u grows and the bitangent the one in which the sampled v
+// falls (up the image), from the quad's linear mapping: ∂p/∂u' and −∂p/∂v'.
+TEST(MeshTangents, FollowTheUvSetAndTheTransformTheNormalMapReads) {
+    Mesh quad;
+    addQuad(quad, -1.0f, 1.0f, [](float x) { return (x + 1.0f) / 2.0f; });
+    for (const glm::vec3& p : quad.positions) quad.uvs1.emplace_back((1.0f - p.y) / 2.0f, (1.0f - p.x) / 2.0f);
+    // uv = A·p + b on this quad: set 0 has A = [[½, 0], [0, −½]], set 1 [[0, −½], [−½, 0]].
+    const glm::mat2 set0(0.5f, 0.0f, 0.0f, -0.5f), set1(0.0f, -0.5f, -0.5f, 0.0f);  // columns
+    const float c = 0.0f, s = 1.0f;  // a quarter turn
+    const glm::mat3 turnAndMirror = glm::mat3(-1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f) *
+                                    glm::mat3(c, -s, 0.0f, s, c, 0.0f, 0.0f, 0.0f, 1.0f);
+    struct Case {
+        const char* name;
+        int set;
+        glm::mat3 transform;
+        glm::mat2 uvOfPosition;
+    };
+    for (const Case& k : {Case{"set 1", 1, glm::mat3(1.0f), set1},
+                          Case{"set 0 turned and mirrored", 0, turnAndMirror, glm::mat2(turnAndMirror) * set0},
+                          Case{"set 1 turned and mirrored", 1, turnAndMirror, glm::mat2(turnAndMirror) * set1}}) {
+        Mesh m = quad;
+        computeTangents(m, k.set, k.transform);
+        ASSERT_TRUE(m.isValid()) << k.name;
+        const glm::mat2 positionOfUv = glm::inverse(k.uvOfPosition);  // columns ∂p/∂u', ∂p/∂v'
+        const glm::vec3 tangent(glm::normalize(positionOfUv[0]), 0.0f), up(glm::normalize(-positionOfUv[1]), 0.0f);
+        for (std::uint32_t v = 0; v < m.vertexCount(); ++v) {
+            expectNear(glm::vec3(m.tangents[v]), tangent, 1e-5f, std::string(k.name) + ": tangent " + std::to_string(v));
+            expectNear(bitangentOf(m, v), up, 1e-5f, std::string(k.name) + ": bitangent " + std::to_string(v));
+        }
     }
 }
 

@@ -794,9 +794,15 @@ public:
             if (prim.material >= 0 && static_cast<std::size_t>(prim.material) >= model_.materials.size())
                 fail(at, "refers to material " + std::to_string(prim.material) + ", but the file has " +
                              std::to_string(model_.materials.size()));
-            const bool normalMapped = prim.material >= 0 &&
-                                      !asset_.materials[static_cast<std::size_t>(prim.material)].material.layers.maps.normal.empty();
-            if (normalMapped && mesh.tangents.empty() && !mesh.uvs.empty()) computeTangents(mesh);
+            const MaterialMaps* maps =
+                prim.material >= 0 ? &asset_.materials[static_cast<std::size_t>(prim.material)].material.layers.maps : nullptr;
+            if (maps && !maps->normal.empty() && mesh.tangents.empty()) {
+                // MikkTSpace on the UV set the normal map reads (glTF 2.0, "Meshes": tangents from
+                // the texture coordinates associated with the normal texture).
+                const TextureSampling& sampling = maps->samplingOf(MapSlot::Normal);
+                if (!(sampling.texCoord == 1 ? mesh.uvs1 : mesh.uvs).empty())
+                    computeTangents(mesh, sampling.texCoord, sampling.uvTransform());
+            }
             computeBounds(mesh);
             AssetPart part;
             part.name = mesh.name;

@@ -4,6 +4,7 @@
 
 #include "mipgloss/scene/bounds.h"
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -60,8 +61,12 @@ void computeBounds(Mesh& mesh);
 // TANGENT and bakers bake normal maps against; the sign is glTF's (the bitangent up the image).
 // A vertex whose corners get different tangents (a mirrored UV seam) is split into one vertex per
 // tangent (duplicateVertex), so the vertex count may grow and indices change. A vertex no triangle
-// uses gets any unit tangent perpendicular to its normal.
-void computeTangents(Mesh& mesh);
+// uses gets any unit tangent perpendicular to its normal. `uvSet` is the UV set the normal map
+// reads (0: uvs, 1: uvs1): glTF computes absent tangents from "the texture coordinates associated
+// with the normal texture". `uvTransform` (KHR_texture_transform's, TextureSampling::uvTransform)
+// maps those UVs to where the map is sampled; the frame follows it, so a rotated or mirrored normal
+// map still tilts the way its texels say.
+void computeTangents(Mesh& mesh, int uvSet = 0, const glm::mat3& uvTransform = glm::mat3(1.0f));
 // Appends a copy of vertex `vertex` (every per-vertex array the mesh has) and returns its index.
 std::uint32_t duplicateVertex(Mesh& mesh, std::uint32_t vertex);
 
