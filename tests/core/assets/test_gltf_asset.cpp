@@ -991,6 +991,8 @@ TEST(GltfHostile, SparseAccessorIsRefused) {
     a.sparse.indices.bufferView = w.model().accessors[kIndexAccessor].bufferView;
     a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     a.sparse.values.bufferView = a.bufferView;
+    a.sparse.indices.byteOffset = 0;  // tinygltf 2.7 leaves them uninitialized
+    a.sparse.values.byteOffset = 0;
     const std::string what = refusal(w);
     EXPECT_CONTAINS(what, "accessor 0");
     EXPECT_CONTAINS(what, "sparse");
@@ -1043,6 +1045,113 @@ TEST(GltfHostile, BytesThatAreNotJsonAreRefused) {
     EXPECT_CONTAINS(refusal(bytesOf("this is not JSON, nor a GLB"), "bad/text.gltf"), "not a readable glTF file");
     refusal(bytesOf("{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [}"), "bad/text.gltf");
     refusal(bytesOf("glTF"), "bad/short.glb");
+}
+
+// The JSON checked before tinygltf reads it (gltf_json_check.h). A quad written by tinygltf's
+// own writer (pretty-printed: "key": value), one value changed per case.
+std::string quadJson() {
+    GltfWriter w;
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(pbrMaterial("grey", {0.5, 0.5, 0.5, 1}, 0, 0.5)))));
+    return w.gltf();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the written JSON";
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+// tinygltf 2.7 recursed once per level: 30 000 nested arrays in extras overflowed the stack.
+TEST(GltfHostile, DeepNestingIsRefusedNamingTheDepthWithoutRecursing) {
+    const std::string deep = "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " + std::string(30000, '[') +
+                             std::string(30000, ']') + "}";
+    const std::string why = refusal(bytesOf(deep), "bad/deep.gltf");
+    EXPECT_CONTAINS(why, "nests deeper than 64 levels");
+    EXPECT_CONTAINS(why, "extras");
+    // Nesting a viewer's extras might hold stays readable.
+    const std::string fine = replaced(quadJson(), "\"asset\": {", "\"extras\": " + std::string(40, '[') + std::string(40, ']') +
+                                                                       ", \"asset\": {");
+    EXPECT_EQ(loadGltfFromMemory(bytesOf(fine), "ok.gltf").parts.size(), 1u);
+}
+
+// tinygltf reads indices as int: 4294967296 became 0 (the first mesh) without a word; −1 means
+// "none" to it. Every index is a whole number from 0 to 2³¹ − 1, even spelled with \u escapes.
+TEST(GltfHostile, IndicesThatAreNotWholeNumbersInRangeAreRefusedByTheirPath) {
+    const std::string quad = quadJson();
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"mesh\": 0", "\"mesh\": 4294967296")), "bad/wrap.gltf"),
+                    "nodes[0].mesh is 4294967296: an index is a whole number from 0 to 2147483647");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"mesh\": 0", "\"\\u006desh\": 4294967296")), "bad/escaped.gltf"),
+                    "nodes[0].mesh is 4294967296");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"material\": 0", "\"material\": -1")), "bad/minus.gltf"),
+                    "meshes[0].primitives[0].material is -1");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"POSITION\": 0", "\"POSITION\": 0.5")), "bad/half.gltf"),
+                    "meshes[0].primitives[0].attributes.POSITION is 0.500000");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"nodes\": [\n        0", "\"nodes\": [\n        \"0\"")), "bad/text.gltf"),
+                    "scenes[0].nodes[0] is not a number");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"byteLength\": ", "\"byteOffset\": -4, \"byteLength\": ")), "bad/offset.gltf"),
+                    "bufferViews[0].byteOffset is -4: a size or offset is a whole number");
+    // The author's own extras hold what they like.
+    const std::string extras = replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"extras\": {\"mesh\": \"the teapot\", \"index\": -1}");
+    EXPECT_EQ(loadGltfFromMemory(bytesOf(extras), "ok.gltf").parts.size(), 1u);
+}
+
+TEST(GltfHostile, AVectorHoldingANullIsRefusedNotDropped) {
+    const std::string quad = quadJson();
+    const std::string matrix = replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"matrix\": [1, 0, 0, null, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]");
+    EXPECT_CONTAINS(refusal(bytesOf(matrix), "bad/matrix.gltf"), "nodes[0].matrix[3] is not a number");
+}
+
+TEST(GltfHostile, ASceneTheFileLacksAndAVersionItIsNotAreRefused) {
+    const std::string quad = quadJson();
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"scene\": 0", "\"scene\": 5")), "bad/scene.gltf"),
+                    "its \"scene\" is 5, but the file has 1 scene(s)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"version\": \"2.0\"", "\"version\": \"3.0\"")), "bad/v3.gltf"),
+                    "is glTF 3.0; mipgloss reads glTF 2");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"version\": \"2.0\"", "\"version\": \"2.0\", \"minVersion\": \"2.1\"")),
+                            "bad/min.gltf"),
+                    "needs a glTF 2.1 reader (asset.minVersion)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"version\": \"2.0\"", "\"version\": \"two\"")), "bad/word.gltf"),
+                    "asset.version \"two\" is not a version");
+    // A later 2.x stays readable (glTF 2.0 §3.3: minor versions are backward compatible).
+    EXPECT_EQ(loadGltfFromMemory(bytesOf(replaced(quad, "\"version\": \"2.0\"", "\"version\": \"2.1\"")), "ok.gltf").parts.size(), 1u);
+}
+
+// Only the asset's folder and below are read, for buffers (refused) and images (a warning, the map
+// left out) alike; an encoded NUL is refused; never the working directory.
+TEST(GltfHostile, FilesOutsideTheAssetsFolderAreNotReadAndANulIsRefused) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "asset");
+    GltfWriter w;
+    w.addImage({}, "../outside.png");
+    const int texture = w.addTexture(0);
+    w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(pbrMaterial("wood", {1, 1, 1, 1}, 0, 0.5, texture)))));
+    w.writeGltf(dir.path() / "asset" / "model.gltf");
+    const Asset asset = loadAsset(dir.path() / "asset" / "model.gltf");
+    EXPECT_TRUE(asset.materials.at(0).material.layers.maps.baseColor.empty());
+    ASSERT_EQ(asset.warnings.size(), 1u);
+    EXPECT_CONTAINS(asset.warnings[0], "image 0's URI \"../outside.png\" lies outside the asset's folder");
+
+    const std::string quad = quadJson();
+    const std::size_t uri = quad.find("\"uri\": \"data:");
+    ASSERT_NE(uri, std::string::npos);
+    const std::size_t end = quad.find('"', uri + 9);
+    for (const std::string outside : {"/etc/passwd", "../../model.bin", "sub/../../x.bin", "%2E%2E/x.bin"}) {
+        std::string text = quad;
+        text.replace(uri, end + 1 - uri, "\"uri\": \"" + outside + "\"");
+        EXPECT_CONTAINS(refusal(bytesOf(text), "bad/outside.gltf"), "buffers[0].uri \"" + outside + "\" lies outside the asset's folder");
+    }
+    std::string nul = quad;
+    nul.replace(uri, end + 1 - uri, "\"uri\": \"model.bin%00.png\"");
+    EXPECT_CONTAINS(refusal(bytesOf(nul), "bad/nul.gltf"), "buffers[0].uri holds an encoded NUL");
+}
+
+// A text file named .glb: words, not the JSON parser's internals.
+TEST(GltfHostile, TextThatIsNotJsonIsRefusedSayingWhere) {
+    const std::string why = refusal(bytesOf("hello\nworld"), "bad/notes.glb");
+    EXPECT_CONTAINS(why, "its JSON is not valid: the file is not a JSON object at line 1, column 1");
+    EXPECT_EQ(why.find("json.exception"), std::string::npos) << why;
+    EXPECT_CONTAINS(refusal(bytesOf("{\"asset\": {\"version\": \"2.0\"},\n \"nodes\": [}"), "bad/cut.gltf"), "at line 2, column 12");
 }
 
 TEST(GltfHostile, EmptyInputIsRefused) {

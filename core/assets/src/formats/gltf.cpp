@@ -4,6 +4,7 @@
 #include "mipgloss/assets/asset.h"
 
 #include "formats/asset_files.h"
+#include "formats/gltf_json_check.h"
 #include "formats/mesh_formats.h"
 #include "formats/reading.h"
 
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -73,10 +75,12 @@ struct FileAccess {
     bool readImages = false;
 };
 
+// Paths come joined to the asset's absolute folder; a relative one (an asset read with no folder)
+// would resolve against the working directory, which an asset never names: not read.
 bool fileExists(const std::string& path, void* user) {
     const auto* access = static_cast<const FileAccess*>(user);
     std::error_code ec;
-    return access->readExternal && fs::is_regular_file(path, ec);
+    return access->readExternal && fs::path(path).is_absolute() && fs::is_regular_file(path, ec);
 }
 
 std::string expandFilePath(const std::string& path, void*) { return path; }  // no shell expansion, ever
@@ -197,7 +201,7 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
     loader.SetImageLoader(keepImageBytes, &model);
     loader.SetFsCallbacks(tinygltf::FsCallbacks{fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
     std::string err, warn;
-    const std::string folder = file.parent_path().string();
+    const std::string folder = fs::absolute(file).parent_path().string();
     if (bytes.size() > 0xffffffffu) throw AssetError(file, "the file is larger than 4 GiB, more than glTF can address");
     const auto length = static_cast<unsigned>(bytes.size());
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
@@ -206,6 +210,11 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
         if (const std::string problem = glbContainerProblem(bytes); !problem.empty())
             throw AssetError(file, "not a readable GLB file: " + problem);
     refuseUnreadRequired(requiredExtensions(jsonOf(bytes, binary)), file);
+    // Before tinygltf: it recurses per level of nesting and reads indices as plain ints.
+    if (const gltfjson::Problem problem = gltfjson::problem(jsonOf(bytes, binary), kSupportedExtensions); !problem.empty())
+        throw AssetError(file, problem.notJson ? std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") +
+                                                     problem.text
+                                               : problem.text);
     if (binary) {
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
     } else {
@@ -440,7 +449,15 @@ public:
         const tinygltf::Image& image = model_.images[static_cast<std::size_t>(t.source)];
         TextureRef ref;
         if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
-            ref.file = (file_.parent_path() / uriDecode(image.uri)).lexically_normal().string();
+            // Only the asset's folder and below are read (gltf_json_check.h; docs/assets.md).
+            const std::string path = gltfjson::decodeUri(image.uri);
+            if (gltfjson::leavesFolder(path)) {
+                warn(element("image", static_cast<std::size_t>(t.source), image.name) + "'s URI \"" + image.uri.substr(0, 120) +
+                     "\" lies outside the asset's folder (mipgloss reads only files in it or below it); " + where +
+                     " drawn without it");
+                return {};
+            }
+            ref.file = (file_.parent_path() / path).lexically_normal().string();
         } else {
             ref.file = file_.string();
             ref.image = t.source;
@@ -451,21 +468,31 @@ public:
         return ref;
     }
 
-    static std::string uriDecode(const std::string& uri) {
-        std::string out;
-        for (std::size_t i = 0; i < uri.size(); ++i) {
-            if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-                std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-                out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-                i += 2;
-            } else {
-                out += uri[i];
-            }
-        }
-        return out;
-    }
-
     static float unit(double v) { return std::isfinite(v) ? static_cast<float>(std::clamp(v, 0.0, 1.0)) : 0.0f; }
+
+    // asset.version "2.x" (a later minor version stays readable: glTF 2.0 §3.3), and no
+    // asset.minVersion above the 2.0 this reader implements.
+    void checkVersion() const {
+        auto parse = [](const std::string& text, int& major, int& minor) {
+            char dot = 0;
+            int used = 0;
+            if (text.size() > 32 || std::sscanf(text.c_str(), "%d%c%d%n", &major, &dot, &minor, &used) != 3) return false;
+            return dot == '.' && static_cast<std::size_t>(used) == text.size() && major >= 0 && minor >= 0;
+        };
+        int major = 0, minor = 0;
+        if (!parse(model_.asset.version, major, minor))
+            throw AssetError(file_, "its asset.version \"" + model_.asset.version.substr(0, 32) +
+                                        "\" is not a version (glTF 2.0 files say \"2.0\")");
+        if (major != 2)
+            throw AssetError(file_, "is glTF " + model_.asset.version + "; mipgloss reads glTF 2");
+        if (!model_.asset.minVersion.empty()) {
+            if (!parse(model_.asset.minVersion, major, minor))
+                throw AssetError(file_, "its asset.minVersion \"" + model_.asset.minVersion.substr(0, 32) + "\" is not a version");
+            if (major != 2 || minor > 0)
+                throw AssetError(file_, "needs a glTF " + model_.asset.minVersion +
+                                            " reader (asset.minVersion); mipgloss reads glTF 2.0");
+        }
+    }
 
     void readMaterials() {
         std::set<std::string> taken;
@@ -880,6 +907,10 @@ public:
             for (const tinygltf::Primitive& p : mesh.primitives) morphed += p.targets.empty() ? 0 : 1;
         if (morphed > 0)
             warn(std::to_string(morphed) + " primitive(s) have morph targets; drawn with their base shape (targets are not read)");
+        checkVersion();
+        if (model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) >= model_.scenes.size())
+            throw AssetError(file_, "its \"scene\" is " + std::to_string(model_.defaultScene) + ", but the file has " +
+                                        std::to_string(model_.scenes.size()) + " scene(s)");
         if (model_.scenes.size() > 1)
             warn("has " + std::to_string(model_.scenes.size()) + " scenes; only the default one (scene " +
                  std::to_string(std::max(model_.defaultScene, 0)) + ") is drawn");
