@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
+#include <vector>
 #include <string>
 
 namespace mipgloss {
@@ -164,3 +165,25 @@ TEST(StarterLibrary, HoldsADozenValidLayeredMaterialsArtistsMake) {
     EXPECT_EQ(library.find("Gold")->material.layers.metallic, 1.0f);
     EXPECT_GT(library.find("Blue car paint")->material.layers.coat, 0.0f);
 }
+
+namespace mipgloss {
+namespace {
+
+// UniqueNames gives what uniqueName gives name after name (the smallest free suffix), in linear
+// time: alike names, names that already carry a suffix, names reserved beforehand, the empty name.
+TEST(UniqueNames, NamesAsUniqueNameDoesOneAfterAnother) {
+    const std::vector<std::string> asked = {"Paint", "Paint", "Paint 2", "Paint", "", "", "Material", "Paint 3",
+                                            "Paint", "Wood", "Paint 2", "Wood 2", "Wood"};
+    UniqueNames fast;
+    std::set<std::string> taken{"Wood"};
+    fast.reserve("Wood");
+    for (const std::string& base : asked) {
+        const std::string expected = uniqueName(base, [&](const std::string& n) { return taken.count(n) > 0; });
+        taken.insert(expected);
+        EXPECT_EQ(fast.take(base), expected) << "asked \"" << base << "\"";
+    }
+    EXPECT_EQ(taken.size(), asked.size() + 1) << "every name distinct";
+}
+
+}  // namespace
+}  // namespace mipgloss

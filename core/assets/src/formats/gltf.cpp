@@ -29,6 +29,8 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 #include <numbers>
 #include <set>
 #include <string>
@@ -495,14 +497,12 @@ public:
     }
 
     void readMaterials() {
-        std::set<std::string> taken;
+        UniqueNames names;
         for (std::size_t m = 0; m < model_.materials.size(); ++m) {
             const tinygltf::Material& g = model_.materials[m];
             const std::string at = element("material", m, g.name);
             AssetMaterial out;
-            out.name = uniqueName(g.name.empty() ? "Material " + std::to_string(m) : g.name,
-                                  [&](const std::string& n) { return taken.count(n) > 0; });
-            taken.insert(out.name);
+            out.name = names.take(g.name.empty() ? "Material " + std::to_string(m) : g.name);
             Material& mat = out.material;
             mat.layered = true;
             Layers& l = mat.layers;
@@ -934,11 +934,8 @@ public:
         for (int root : roots) visit(root, glm::dmat4(1.0), 0, "the scene");
         if (asset_.parts.empty()) throw AssetError(file_, "no triangles to draw (no mesh in the scene has any)");
         // Part names unique, as scene objects' are shown.
-        std::set<std::string> taken;
-        for (AssetPart& part : asset_.parts) {
-            part.name = uniqueName(part.name, [&](const std::string& s) { return taken.count(s) > 0; });
-            taken.insert(part.name);
-        }
+        UniqueNames partNames;
+        for (AssetPart& part : asset_.parts) part.name = partNames.take(part.name);
         return std::move(asset_);
     }
 

@@ -24,6 +24,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_set>
+#include <unordered_map>
 #include <string_view>
 #include <vector>
 
@@ -202,6 +204,19 @@ struct NamedMaterial {
 // `base` if `taken(base)` is false, otherwise the first of "base 2", "base 3", ... that is free.
 // An empty base is "Material".
 std::string uniqueName(const std::string& base, const std::function<bool(const std::string&)>& taken);
+
+// uniqueName for many names in a row, in linear time: each base remembers the next suffix to
+// try, where uniqueName would try "base 2", "base 3", ... again for every alike name (an asset of
+// 30 000 parts named alike took seconds). take() marks its result taken.
+class UniqueNames {
+public:
+    void reserve(const std::string& name) { taken_.insert(name); }  // already in use
+    std::string take(const std::string& base);
+
+private:
+    std::unordered_set<std::string> taken_;
+    std::unordered_map<std::string, int> next_;
+};
 
 struct Transform {
     glm::vec3 translation{0.0f};
