@@ -1096,6 +1096,15 @@ TEST(GltfHostile, IndicesThatAreNotWholeNumbersInRangeAreRefusedByTheirPath) {
     EXPECT_EQ(loadGltfFromMemory(bytesOf(extras), "ok.gltf").parts.size(), 1u);
 }
 
+// glTF's schema: at least one byte, at least one element.
+TEST(GltfHostile, AnEmptyBufferOrAccessorIsRefusedByItsPath) {
+    const std::string quad = quadJson();
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"byteLength\": ", "\"byteLength\": 0, \"x\": ")), "bad/empty.gltf"),
+                    "bufferViews[0].byteLength is 0: a byteLength is at least 1");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"count\": ", "\"count\": 0, \"x\": ")), "bad/none.gltf"),
+                    "accessors[0].count is 0: a count is at least 1");
+}
+
 TEST(GltfHostile, AVectorHoldingANullIsRefusedNotDropped) {
     const std::string quad = quadJson();
     const std::string matrix = replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"matrix\": [1, 0, 0, null, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]");

@@ -217,11 +217,18 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
         throw AssetError(file, problem.notJson ? std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") +
                                                      problem.text
                                                : problem.text);
-    if (binary) {
-        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
-    } else {
-        ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length,
-                                        folder);
+    try {
+        if (binary) {
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
+        } else {
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), length,
+                                            folder);
+        }
+    } catch (const std::bad_alloc&) {
+        throw;  // out of memory: the caller's own message
+    } catch (const std::exception& e) {
+        // tinygltf 2.7 lets a few library exceptions out (a vector's range check): named here.
+        throw AssetError(file, std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") + e.what());
     }
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();

@@ -179,7 +179,13 @@ private:
         };
         if (parent.object) {
             if (parent.attributes || isIndexKey(parent.member)) whole(kLargestIndex, "an index");
-            else if (isSizeKey(parent.member)) whole(kLargestSize, "a size or offset");
+            else if (isSizeKey(parent.member)) {
+                whole(kLargestSize, "a size or offset");
+                // glTF's schema: a buffer, a buffer view and an accessor hold at least one byte
+                // or element (a BIN chunk with a 0-byte buffer threw out of tinygltf unnamed).
+                if ((parent.member == "byteLength" || parent.member == "count") && value < 1.0)
+                    refuse("is 0: a " + std::string(parent.member == "count" ? "count" : "byteLength") + " is at least 1");
+            }
             else if (isNumberArray(parent.member) && kind != Kind::Container && kind != Kind::Number)
                 refuse("must be numbers");
         } else if (parent.depth >= 3 && isIndexArray(parent.key)) {
