@@ -363,6 +363,10 @@ Image readInput(std::unique_ptr<OIIO::ImageInput> in, const fs::path& name, Impo
 
 namespace {
 
+// How far from a negative value its magnitude is taken (pixels, each side in its row): ringing
+// (a DCT block's, a sharpening filter's) lies within a few pixels of what rang.
+constexpr int kRepairReach = 16;
+
 // One channel of one row, NaN and values above kMaxRadiance already handled: +Inf, then negatives.
 void sanitiseRowChannel(Rgb* row, int width, int c, SanitiseCounts& n) {
     auto at = [&](int x) -> float& { return row[x][c]; };
@@ -389,40 +393,34 @@ void sanitiseRowChannel(Rgb* row, int width, int c, SanitiseCounts& n) {
         x = end;
     }
     // Negatives (ringing beside bright pixels, a camera's black level): each becomes 0 and its
-    // magnitude is taken from the nearest positive values in the row, half from each side, so the
-    // row keeps its energy (clamping alone added 6–13 % to some maps'). What a side cannot give
-    // (the row's end comes first) is taken from the other side, and what neither can is added.
+    // magnitude is taken from the positive values within kRepairReach pixels of it in the row, in
+    // proportion to each (the bright pixel that rang pays nearly all), so the row keeps its
+    // energy (clamping alone added 6–13 % to some maps') and nothing beyond the ringing's own
+    // neighbourhood changes. The old rule took it from the nearest values outward, half each
+    // side: a sun's large negative blue lobes drained a sky's blue along the whole row, a lime
+    // band in every render (issue 34). What the neighbourhood cannot give is added, and counted.
     bool any = false;
     for (int x = 0; x < width; ++x) any = any || at(x) < 0.0f;
     if (!any) return;
-    std::vector<double> debt(static_cast<std::size_t>(width), 0.0);  // half of each negative, owed leftward
-    double rightward = 0.0;  // carried left to right: owed by the pixels to the right
-    for (int x = 0; x < width; ++x) {
-        float& v = at(x);
-        if (v < 0.0f) {
+    std::vector<std::pair<int, double>> debts;
+    for (int x = 0; x < width; ++x)
+        if (at(x) < 0.0f) {
             ++n.negative;
-            n.negativeMoved -= v;
-            rightward += -0.5 * v;
-            debt[static_cast<std::size_t>(x)] = -0.5 * v;
-            v = 0.0f;
-        } else if (rightward > 0.0 && v > 0.0f) {
-            const double take = std::min(static_cast<double>(v), rightward);
-            v = static_cast<float>(v - take);
-            rightward -= take;
+            debts.emplace_back(x, -static_cast<double>(at(x)));
+            at(x) = 0.0f;
         }
-    }
-    double leftward = rightward;  // what the right end could not give turns back
-    for (int x = width - 1; x >= 0; --x) {
-        leftward += debt[static_cast<std::size_t>(x)];
-        float& v = at(x);
-        if (leftward > 0.0 && v > 0.0f) {
-            const double take = std::min(static_cast<double>(v), leftward);
-            v = static_cast<float>(v - take);
-            leftward -= take;
+    for (const auto& [x, debt] : debts) {
+        const int from = std::max(0, x - kRepairReach), to = std::min(width - 1, x + kRepairReach);
+        double pool = 0.0;
+        for (int k = from; k <= to; ++k) pool += at(k);
+        const double paid = std::min(debt, pool);
+        if (paid > 0.0) {
+            const double keep = 1.0 - paid / pool;  // every positive value keeps this share of itself
+            for (int k = from; k <= to; ++k) at(k) = static_cast<float>(at(k) * keep);
         }
+        n.negativeMoved += paid;
+        n.negativeAdded += debt - paid;
     }
-    n.negativeAdded += leftward;  // neither side could give it
-    n.negativeMoved -= leftward;
 }
 
 }  // namespace
@@ -524,7 +522,8 @@ void addCounts(ImportReport& report, const fs::path& file, const SanitiseCounts&
     if (n.negative > 0) {
         std::string part = "replaced " + std::to_string(n.negative) + " negative value(s) by 0, taking their " +
                            shareOf(n.negativeMoved + n.negativeAdded, n.energy) +
-                           " of the image's energy from the nearest positive values in their rows";
+                           " of the image's energy from the positive values within " + std::to_string(kRepairReach) +
+                           " pixels of each in its row, in proportion to each";
         if (n.negativeAdded > 0.0) part += " (" + shareOf(n.negativeAdded, n.energy) + " could not be taken and was added)";
         parts.push_back(part);
     }

@@ -3,6 +3,7 @@
 // strips; a header asking for absurd memory is refused before anything is allocated; progress
 // and cancelling run during the decode.
 #include "mipgloss/io/import.h"
+#include "sanitise.h"
 #include "test_support.h"
 
 #include <OpenImageIO/imageio.h>
@@ -16,6 +17,8 @@
 #include <vector>
 
 using namespace mipgloss;
+using mipgloss::io_detail::SanitiseCounts;
+using mipgloss::io_detail::sanitiseRows;
 namespace fs = std::filesystem;
 using test::TempDir;
 
@@ -105,14 +108,12 @@ TEST(DecodeStrips, EachRuleIsRowLocalAndKeepsTheRowsEnergy) {
     const DecodedImage img = decodeImage(dir / "inf.exr", &report);
     EXPECT_EQ(img.at(0, 0).x, 3.0f) << "+Inf at the row's start: its one finite neighbour";
     EXPECT_EQ(img.at(1, 0).z, 0.0f);    // NaN -> 0
-    // −2 -> 0, and 1 taken from each side: the nearest positives are (3, 300) and (5, 300).
+    // −2 -> 0, and 2 taken from the row's seven ones (all within 16 pixels), in proportion: 5/7 each.
     EXPECT_EQ(img.at(4, 300).x, 0.0f);
-    EXPECT_EQ(img.at(3, 300).x, 0.0f);
-    EXPECT_EQ(img.at(5, 300).x, 0.0f);
-    EXPECT_EQ(img.at(2, 300).x, 1.0f);
+    for (int x : {0, 1, 2, 3, 5, 6, 7}) EXPECT_NEAR(img.at(x, 300).x, 5.0f / 7.0f, 1e-6f) << x;
     double row = 0.0;
     for (int x = 0; x < w; ++x) row += img.at(x, 300).x;
-    EXPECT_DOUBLE_EQ(row, 8.0 - 1.0 - 2.0) << "the row's signed sum, kept";
+    EXPECT_NEAR(row, 8.0 - 1.0 - 2.0, 1e-5) << "the row's signed sum, kept (float rounding)";
     EXPECT_EQ(report.infCount, 1u);
     EXPECT_EQ(report.nanCount, 1u);
     EXPECT_EQ(report.negativeCount, 1u);
@@ -120,6 +121,37 @@ TEST(DecodeStrips, EachRuleIsRowLocalAndKeepsTheRowsEnergy) {
     // Energy: 4800·3 − 1 values of 1 (less the NaN), the 3, the 42, the +Inf's 3 and the −2 moved.
     EXPECT_NE(report.warnings[0].find("adding 0.02 %"), std::string::npos) << report.warnings[0];
     EXPECT_NE(report.warnings[0].find("taking their 0.01 %"), std::string::npos) << report.warnings[0];
+}
+
+// A sun in a sky row with the large negative lobes DWAB's ringing leaves beside it (blue −300,
+// red −50, four pixels): the sun pays for them, the sky beyond the ringing's neighbourhood keeps
+// its colour exactly, and the row its signed sum. The first rule took the debt from the nearest
+// values outward, half each side: 600 of blue drained the sky's 1.0 per pixel across the whole
+// row (a lime band).
+TEST(DecodeStrips, RingingBesideASunIsPaidByTheSunNotTheSky) {
+    const int w = 512;
+    const Rgb sky(0.3f, 0.5f, 1.0f);
+    std::vector<Rgb> row(w, sky);
+    row[256] = Rgb(5000.0f);
+    for (int x : {254, 255, 257, 258}) row[static_cast<std::size_t>(x)] = Rgb(-50.0f, 0.5f, -300.0f);
+    double signedSum = 0.0;
+    for (const Rgb& p : row) signedSum += static_cast<double>(p.x) + p.y + p.z;
+    const SanitiseCounts n = sanitiseRows(row, w);
+    EXPECT_EQ(n.negative, 8u);
+    EXPECT_EQ(n.negativeAdded, 0.0);
+    double sum = 0.0;
+    for (int x = 0; x < w; ++x) {
+        const Rgb& p = row[static_cast<std::size_t>(x)];
+        sum += static_cast<double>(p.x) + p.y + p.z;
+        ASSERT_TRUE(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f) << x;
+        if (std::abs(x - 256) > 2 + 16) {
+            EXPECT_EQ(p, sky) << "the sky at " << x << " untouched";
+        }
+    }
+    EXPECT_NEAR(sum / signedSum, 1.0, 1e-6) << "the row's signed sum kept (float rounding)";
+    // Within the neighbourhood the sky pays in proportion to its value: at most (1200 / 5000) of it.
+    EXPECT_GT(row[270].z, 0.7f * sky.z);
+    EXPECT_NEAR(row[256].z, 5000.0f - 1200.0f, 20.0f) << "the sun pays nearly all";
 }
 
 TEST(DecodeLimits, HeaderClaimingAMillionSquaredPixelsIsRefusedBeforeAllocating) {
