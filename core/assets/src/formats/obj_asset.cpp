@@ -68,28 +68,6 @@ void requireText(std::span<const unsigned char> bytes, const fs::path& file, std
                            std::string(format) + " text file");
 }
 
-// uniqueName's rule (scene.h: "base", else the first free of "base 2", "base 3", ...; "" is
-// "Material") in time linear in the names: each base remembers the last suffix it tried, so a file
-// of n equal names costs n tries, not the n²/2 of uniqueName, which starts at " 2" every time.
-// Names are never given back, so no suffix below the one remembered can be free again.
-class UniqueNames {
-public:
-    std::string add(const std::string& wanted) {
-        const std::string base = wanted.empty() ? std::string("Material") : wanted;
-        std::string name = base;
-        for (std::size_t& suffix = lastSuffix_[base]; taken_.contains(name);) {
-            suffix = std::max<std::size_t>(suffix + 1, 2);
-            name = base + " " + std::to_string(suffix);
-        }
-        taken_.insert(name);
-        return name;
-    }
-
-private:
-    std::unordered_set<std::string> taken_;
-    std::unordered_map<std::string, std::size_t> lastSuffix_;
-};
-
 // A finite number from the next word of `rest`.
 float readNumber(std::string_view& rest, const Where& where, std::string_view what) {
     const std::string_view token = nextToken(rest);
@@ -291,7 +269,7 @@ MtlLibrary parseMtlWithWarnings(std::span<const unsigned char> bytes, const fs::
         if (key == "newmtl") {
             finish();
             current.emplace();
-            current->out.name = names.add(std::string(trimmed(rest)));
+            current->out.name = names.take(std::string(trimmed(rest)));
             current->out.material.layered = true;
         } else if (current && !endOfWords(key)) {
             // Statements before the first newmtl describe no material: skipped.
@@ -437,7 +415,7 @@ PartBuilder& currentPart(ObjReader& r) {
         const std::string stem = r.file.stem().string();
         const std::string base = r.material >= 0 ? r.materials[static_cast<std::size_t>(r.material)].name
                                                  : (stem.empty() ? "Mesh" : stem);
-        part.name = r.partNames.add(base);
+        part.name = r.partNames.take(base);
         part.material = r.material;
         r.parts.push_back(std::move(part));
     }
@@ -541,7 +519,7 @@ void readLibraries(std::span<const unsigned char> bytes, const fs::path& file, s
         for (AssetMaterial& m : library.materials) {
             // usemtl names the material as its library does; the first of a name is the one.
             materialNamed.try_emplace(m.name, static_cast<int>(asset.materials.size()));
-            m.name = names.add(m.name);
+            m.name = names.take(m.name);
             asset.materials.push_back(std::move(m));
         }
     }
