@@ -1155,6 +1155,28 @@ TEST(GltfHostile, FilesOutsideTheAssetsFolderAreNotReadAndANulIsRefused) {
     EXPECT_CONTAINS(refusal(bytesOf(nul), "bad/nul.gltf"), "buffers[0].uri holds an encoded NUL");
 }
 
+// tinygltf keeps a copy of an external file per reference (12 000 images naming one 365 KB file
+// held 4.4 GB): past 1 GiB of external bytes in all, the read is refused naming the file. Checked
+// with a sparse 1.5 GiB file, which the check refuses by its size before reading a byte of it.
+TEST(GltfHostile, ExternalFilesPastTheBudgetAreRefusedBeforeTheyAreRead) {
+    TempDir dir;
+    { std::ofstream(dir.path() / "big.bin", std::ios::binary) << 'x'; }
+    fs::resize_file(dir.path() / "big.bin", (std::uintmax_t(3) << 29));  // 1.5 GiB, sparse
+    const std::string quad = quadJson();
+    const std::size_t uri = quad.find("\"uri\": \"data:");
+    ASSERT_NE(uri, std::string::npos);
+    std::string text = quad;
+    text.replace(uri, quad.find('"', uri + 9) + 1 - uri, "\"uri\": \"big.bin\"");
+    { std::ofstream(dir.path() / "big.gltf") << text; }
+    try {
+        loadAsset(dir.path() / "big.gltf");
+        ADD_FAILURE() << "loaded";
+    } catch (const AssetError& e) {
+        EXPECT_CONTAINS(e.what(), "more than 1024 MiB of files in all");
+        EXPECT_CONTAINS(e.what(), "big.bin");
+    }
+}
+
 // A text file named .glb: words, not the JSON parser's internals.
 TEST(GltfHostile, TextThatIsNotJsonIsRefusedSayingWhere) {
     const std::string why = refusal(bytesOf("hello\nworld"), "bad/notes.glb");

@@ -75,7 +75,14 @@ bool isImageFile(const std::string& path) {
 struct FileAccess {
     bool readExternal = true;
     bool readImages = false;
+    // Bytes of external files read so far for this asset: tinygltf keeps a copy per reference, so
+    // 12 000 images naming one 365 KB file (a 217 KB glTF) held 4.4 GB. Past kMaxExternalBytes the
+    // read is refused, naming the file (issue 34: any input under 1 MB stays under 2 GB).
+    std::size_t bytesRead = 0;
+    // The images' files (absolute, normalized), whatever their extension: never read here.
+    std::set<std::string> imageFiles;
 };
+constexpr std::size_t kMaxExternalBytes = std::size_t(1) << 30;
 
 // Paths come joined to the asset's absolute folder; a relative one (an asset read with no folder)
 // would resolve against the working directory, which an asset never names: not read.
@@ -88,12 +95,23 @@ bool fileExists(const std::string& path, void* user) {
 std::string expandFilePath(const std::string& path, void*) { return path; }  // no shell expansion, ever
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-    const auto* access = static_cast<const FileAccess*>(user);
+    auto* access = static_cast<FileAccess*>(user);
     if (!access->readExternal) {
         if (err) *err += "external file '" + path + "' is not read from memory\n";
         return false;
     }
-    if (!access->readImages && isImageFile(path)) return false;  // decoded later, by the texture cache
+    if (!access->readImages &&
+        (isImageFile(path) || access->imageFiles.count(fs::path(path).lexically_normal().string())))
+        return false;  // decoded later, by the texture cache
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && (size > kMaxExternalBytes || access->bytesRead + size > kMaxExternalBytes)) {
+        if (err)
+            *err += "its buffers and images name more than " + std::to_string(kMaxExternalBytes >> 20) +
+                    " MiB of files in all (each reference is a copy), reached at '" + path + "'\n";
+        return false;
+    }
+    if (!ec) access->bytesRead += static_cast<std::size_t>(size);
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         if (err) *err += "cannot open '" + path + "'\n";
@@ -213,10 +231,16 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
             throw AssetError(file, "not a readable GLB file: " + problem);
     refuseUnreadRequired(requiredExtensions(jsonOf(bytes, binary)), file);
     // Before tinygltf: it recurses per level of nesting and reads indices as plain ints.
-    if (const gltfjson::Problem problem = gltfjson::problem(jsonOf(bytes, binary), kSupportedExtensions); !problem.empty())
+    std::set<std::string> imageUris;
+    if (const gltfjson::Problem problem = gltfjson::problem(jsonOf(bytes, binary), kSupportedExtensions, &imageUris);
+        !problem.empty())
         throw AssetError(file, problem.notJson ? std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") +
                                                      problem.text
                                                : problem.text);
+    for (const std::string& uri : imageUris) {
+        access.imageFiles.insert((fs::path(folder) / uri).lexically_normal().string());
+        access.imageFiles.insert(fs::path(folder + "/" + uri).lexically_normal().string());
+    }
     try {
         if (binary) {
             ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
@@ -959,20 +983,20 @@ private:
 
 Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const fs::path& file) {
     if (bytes.empty()) throw AssetError(file, "file is empty (0 bytes)");
-    const tinygltf::Model model = parseModel(bytes, file, FileAccess{false, false});
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess{false, false, 0, {}});
     return Reader(model, file).read();
 }
 
 Asset loadGltfFile(const fs::path& path) {
     const std::vector<unsigned char> bytes = readAssetFile(path);
     if (bytes.empty()) throw AssetError(path, "file is empty (0 bytes)");
-    const tinygltf::Model model = parseModel(bytes, path, FileAccess{true, false});
+    const tinygltf::Model model = parseModel(bytes, path, FileAccess{true, false, 0, {}});
     return Reader(model, path).read();
 }
 
 std::vector<EncodedImage> gltfImages(const fs::path& file) {
     const std::vector<unsigned char> bytes = readAssetFile(file);
-    const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true});
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true, 0, {}});
     std::vector<EncodedImage> images;
     images.reserve(model.images.size());
     for (const tinygltf::Image& i : model.images) images.push_back(EncodedImage{i.image, i.mimeType});

@@ -54,7 +54,8 @@ struct Syntax {
 
 class Scanner {
 public:
-    Scanner(std::string_view json, const std::set<std::string>& read) : s_(json), read_(read) {}
+    Scanner(std::string_view json, const std::set<std::string>& read, std::set<std::string>* imageUris)
+        : s_(json), read_(read), imageUris_(imageUris) {}
 
     Problem run() {
         try {
@@ -199,13 +200,17 @@ private:
     // refused (it would cut the path short), and a buffer's refused when absolute or leaving the
     // asset's folder, since only the asset's own folder is read (docs/assets.md, "Paths"). An
     // image's such URI is the reader's warning (the map left out), not a refusal.
-    void checkUri(const std::string& text) const {
+    void checkUri(const std::string& text) {
         if (stack_.size() != 3 || !stack_.back().object || stack_.back().member != "uri") return;
         const std::string& array = stack_.back().key;
         if (array != "buffers" && array != "images") return;
         if (text.rfind("data:", 0) == 0) return;
         const std::string decoded = decodeUri(text);
         if (decoded.find('\0') != std::string::npos) refuse("holds an encoded NUL (%00): not a file name");
+        if (array == "images" && imageUris_) {
+            imageUris_->insert(decoded);
+            imageUris_->insert(text);  // as tinygltf may join it, undecoded
+        }
         if (array == "buffers" && leavesFolder(decoded))
             refuse("\"" + text.substr(0, 120) + "\" lies outside the asset's folder; mipgloss reads only files in it or below it");
     }
@@ -323,6 +328,7 @@ private:
 
     std::string_view s_;
     const std::set<std::string>& read_;
+    std::set<std::string>* imageUris_;
     std::size_t i_ = 0;
     std::vector<Frame> stack_;
 };
@@ -363,8 +369,8 @@ bool leavesFolder(std::string_view path) {
     return false;
 }
 
-Problem problem(std::string_view json, const std::set<std::string>& readExtensions) {
-    return Scanner(json, readExtensions).run();
+Problem problem(std::string_view json, const std::set<std::string>& readExtensions, std::set<std::string>* imageUris) {
+    return Scanner(json, readExtensions, imageUris).run();
 }
 
 }  // namespace mipgloss::gltfjson

@@ -33,8 +33,10 @@ struct Problem {
     bool notJson = false;
     bool empty() const { return text.empty(); }
 };
-// `readExtensions` are the extension names whose contents are checked like the core's.
-Problem problem(std::string_view json, const std::set<std::string>& readExtensions);
+// `readExtensions` are the extension names whose contents are checked like the core's. With
+// `imageUris`, the images' URIs (not data: ones) are added to it, as written and %-decoded.
+Problem problem(std::string_view json, const std::set<std::string>& readExtensions,
+                std::set<std::string>* imageUris = nullptr);
 
 // A URI's %XX escapes decoded (RFC 3986); a '%' not followed by two hex digits stays as it is.
 std::string decodeUri(std::string_view uri);
