@@ -4,7 +4,10 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <memory>
+#include <vector>
 
 namespace mipgloss {
 
@@ -96,9 +99,34 @@ void downsizeTexture(TextureImage& image, int maxSize) {
     }
 }
 
+// A JPEG cut short: libjpeg fills the missing rows with grey and OpenImageIO reports no error, so
+// the picture would show a grey patch without a word (issue 34). Every JPEG ends with an
+// end-of-image marker (FF D9) after its last scan (FF DA); in the scans' entropy-coded data a 0xFF
+// byte is always followed by 00 or a restart marker, so FF D9 there is the real end. "" when
+// `bytes` is not a JPEG or ends as one should.
+static std::string truncatedJpegProblem(std::span<const unsigned char> bytes) {
+    if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return {};
+    std::size_t lastScan = 0;
+    for (std::size_t i = 2; i + 1 < bytes.size(); ++i)
+        if (bytes[i] == 0xFF && bytes[i + 1] == 0xDA) lastScan = i;
+    if (lastScan == 0) return "a JPEG without image data (no scan): truncated";
+    for (std::size_t i = lastScan + 2; i + 1 < bytes.size(); ++i)
+        if (bytes[i] == 0xFF && bytes[i + 1] == 0xD9) return {};
+    return "a truncated JPEG (" + std::to_string(bytes.size()) + " bytes, no end-of-image marker after its last scan)";
+}
+
 TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
+    {
+        std::ifstream head(file, std::ios::binary);
+        unsigned char magic[2] = {0, 0};
+        if (head.read(reinterpret_cast<char*>(magic), 2) && magic[0] == 0xFF && magic[1] == 0xD8) {
+            head.seekg(0);
+            const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
+            if (const std::string problem = truncatedJpegProblem(bytes); !problem.empty()) throw TextureError(file, problem);
+        }
+    }
     const OIIO::ImageSpec config = straightAlpha();
     auto in = OIIO::ImageInput::open(file.string(), &config);
     if (!in) {
@@ -111,6 +139,7 @@ TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
 TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
                                      const std::string& mimeType, int maxSize) {
     if (bytes.empty()) throw TextureError(nameForMessages, "the image is empty (0 bytes)");
+    if (const std::string problem = truncatedJpegProblem(bytes); !problem.empty()) throw TextureError(nameForMessages, problem);
     OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
     const std::string fakeName = "embedded" + extensionForMime(mimeType, nameForMessages);
     // With a configuration, OpenImageIO 2.4's readers take the proxy from it (the argument alone is

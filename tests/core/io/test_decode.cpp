@@ -3,6 +3,7 @@
 // strips; a header asking for absurd memory is refused before anything is allocated; progress
 // and cancelling run during the decode.
 #include "mipgloss/io/import.h"
+#include "mipgloss/io/texture.h"
 #include "sanitise.h"
 #include "test_support.h"
 
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -152,6 +154,38 @@ TEST(DecodeStrips, RingingBesideASunIsPaidByTheSunNotTheSky) {
     // Within the neighbourhood the sky pays in proportion to its value: at most (1200 / 5000) of it.
     EXPECT_GT(row[270].z, 0.7f * sky.z);
     EXPECT_NEAR(row[256].z, 5000.0f - 1200.0f, 20.0f) << "the sun pays nearly all";
+}
+
+// A JPEG texture cut short decodes without an error from OpenImageIO (libjpeg fills the rest with
+// grey): it is refused, from a file and from memory, naming it; the whole file still decodes.
+TEST(DecodeLimits, TruncatedJpegTextureIsRefusedNotDrawnGrey) {
+    TempDir dir;
+    const int w = 128, h = 128;
+    std::vector<unsigned char> px(static_cast<std::size_t>(w * h * 3));
+    for (std::size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>((i * 2654435761u) >> 24);
+    const fs::path whole = dir / "noise.jpg";
+    auto out = OIIO::ImageOutput::create(whole.string());
+    ASSERT_TRUE(out && out->open(whole.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8)) &&
+                out->write_image(OIIO::TypeDesc::UINT8, px.data()) && out->close());
+    std::ifstream in(whole, std::ios::binary);
+    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 4000u);
+    EXPECT_EQ(decodeTexture(whole).width, w);
+    EXPECT_EQ(decodeTextureFromMemory(bytes, "whole", "image/jpeg").width, w);
+    const std::vector<unsigned char> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2));
+    const fs::path half = dir / "half.jpg";
+    std::ofstream(half, std::ios::binary).write(reinterpret_cast<const char*>(cut.data()), static_cast<std::streamsize>(cut.size()));
+    for (int fromMemory : {0, 1}) {
+        try {
+            if (fromMemory) decodeTextureFromMemory(cut, "model.glb#image 2", "image/jpeg");
+            else decodeTexture(half);
+            ADD_FAILURE() << "a truncated JPEG decoded, from " << (fromMemory ? "memory" : "a file");
+        } catch (const TextureError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("a truncated JPEG"), std::string::npos) << what;
+            EXPECT_NE(what.find(fromMemory ? "model.glb#image 2" : half.string()), std::string::npos) << what;
+        }
+    }
 }
 
 TEST(DecodeLimits, HeaderClaimingAMillionSquaredPixelsIsRefusedBeforeAllocating) {
