@@ -226,6 +226,21 @@ TEST(ObjAsset, MissingLibraryIsAWarningAndPartsGetTheDefaultMaterial) {
     for (const std::string& warning : asset.warnings) EXPECT_EQ(warning.rfind("models/thing.obj: ", 0), 0u) << warning;
 }
 
+// `mtllib tex.png` (a library that is not an MTL file) refused the whole OBJ naming only the PNG:
+// now a warning naming the OBJ and the library it asked for, the OBJ drawn with the default material.
+TEST(ObjAsset, UnreadableLibraryIsAWarningNamingTheObjAndTheLibrary) {
+    const std::string png("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+    const std::vector<unsigned char> bytes(png.begin(), png.end());
+    const Asset asset = loadObj("mtllib tex.png\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Red\nf 1 2 3\n",
+                                {NamedBytes{"tex.png", bytes}});
+    ASSERT_EQ(asset.parts.size(), 1u);
+    EXPECT_EQ(asset.parts[0].material, -1);
+    ASSERT_FALSE(asset.warnings.empty());
+    EXPECT_EQ(asset.warnings[0].rfind("models/thing.obj: ", 0), 0u) << asset.warnings[0];
+    EXPECT_CONTAINS(asset.warnings[0], "material library tex.png is not readable");
+    EXPECT_CONTAINS(asset.warnings[0], "not an MTL text file");
+}
+
 TEST(ObjAsset, ZeroAreaFacesAreDroppedWithAWarning) {
     const Asset asset = loadObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
     ASSERT_EQ(asset.parts.size(), 1u);

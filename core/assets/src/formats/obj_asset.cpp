@@ -514,7 +514,16 @@ void readLibraries(std::span<const unsigned char> bytes, const fs::path& file, s
         }
         // Texture paths are relative to the library, which the name places relative to the OBJ.
         const fs::path mtlFile = (file.parent_path() / name).lexically_normal();
-        MtlLibrary library = parseMtlWithWarnings(found->bytes, mtlFile, mtlFile.parent_path());
+        MtlLibrary library;
+        try {
+            library = parseMtlWithWarnings(found->bytes, mtlFile, mtlFile.parent_path());
+        } catch (const FileError& e) {
+            // Named as the OBJ asked for it (an `mtllib tex.png` refused the whole OBJ naming only
+            // the PNG): the OBJ still draws, with the default material where it would have used it.
+            asset.warnings.push_back(file.string() + ": material library " + shown(name) + " is not readable (" +
+                                     e.what() + "); its materials are drawn with the default material");
+            continue;
+        }
         asset.warnings.insert(asset.warnings.end(), library.warnings.begin(), library.warnings.end());
         for (AssetMaterial& m : library.materials) {
             // usemtl names the material as its library does; the first of a name is the one.
