@@ -1177,6 +1177,23 @@ TEST(GltfHostile, ExternalFilesPastTheBudgetAreRefusedBeforeTheyAreRead) {
     }
 }
 
+// Images that are the same bytes (one buffer view) are one image to decode: a 35 KB GLB whose four
+// images share a 16384² PNG decoded it four times (4.9 GB).
+TEST(GltfHostile, ImagesSharingABufferViewAreDecodedOnce) {
+    GltfWriter w;
+    const int first = w.addImage(encodePng(checker4()));
+    for (int k = 0; k < 3; ++k) w.model().images.push_back(w.model().images[static_cast<std::size_t>(first)]);
+    for (int k = 0; k < 4; ++k) {
+        const int texture = w.addTexture(first + k);
+        w.addToScene(w.addNode(w.addMesh(texturedQuad(), w.addMaterial(pbrMaterial("m" + std::to_string(k), {1, 1, 1, 1}, 0, 0.5, texture)))));
+    }
+    const Asset asset = loadGlb(w);
+    ASSERT_EQ(asset.materials.size(), 4u);
+    for (const AssetMaterial& m : asset.materials)
+        EXPECT_EQ(m.material.layers.maps.baseColor, asset.materials[0].material.layers.maps.baseColor) << m.name;
+    EXPECT_EQ(asset.images.size(), 1u) << "one encoded image kept for the decoder";
+}
+
 // A text file named .glb: words, not the JSON parser's internals.
 TEST(GltfHostile, TextThatIsNotJsonIsRefusedSayingWhere) {
     const std::string why = refusal(bytesOf("hello\nworld"), "bad/notes.glb");

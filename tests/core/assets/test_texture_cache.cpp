@@ -4,6 +4,7 @@
 #include "gltf_writer.h"
 #include "mipgloss/assets/asset.h"
 #include "mipgloss/assets/textures.h"
+#include "mipgloss/io/texture.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -137,5 +138,30 @@ TEST(TextureCache, ColourIsKeptWhereAlphaIsBelowOne) {
             EXPECT_EQ(image->rgba[texel * 4 + 2], 50) << ref.key();
             EXPECT_EQ(image->rgba[texel * 4 + 3], 64) << ref.key();
         }
+    }
+}
+
+// Grey and grey + alpha images become RGBA with the grey in every colour channel, read in place
+// (decodeTexture reads straight into the RGBA buffer and expands each pixel there).
+TEST(TextureDecode, GreyAndGreyAlphaExpandToRgbaInPlace) {
+    for (int channels : {1, 2, 3}) {
+        const TestImage image = makeImage(3, 2, channels, [&](int x, int y) {
+            std::vector<std::uint8_t> texel{static_cast<std::uint8_t>(40 * x + 100 * y + 1)};
+            if (channels >= 2) texel.push_back(static_cast<std::uint8_t>(200 - x));
+            if (channels == 3) texel.push_back(7);
+            return texel;
+        });
+        const TextureImage decoded = decodeTextureFromMemory(encodePng(image), "grey.png", "image/png");
+        ASSERT_EQ(decoded.width, 3);
+        EXPECT_EQ(decoded.channels, channels);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 3; ++x) {
+                const std::uint8_t* q = &decoded.rgba[static_cast<std::size_t>(y * 3 + x) * 4];
+                const auto v = static_cast<std::uint8_t>(40 * x + 100 * y + 1);
+                EXPECT_EQ(q[0], v) << channels << " channels at " << x << "," << y;
+                EXPECT_EQ(q[1], channels == 3 ? static_cast<std::uint8_t>(200 - x) : v);
+                EXPECT_EQ(q[2], channels == 3 ? 7 : v);
+                EXPECT_EQ(q[3], channels == 2 ? static_cast<std::uint8_t>(200 - x) : 255);
+            }
     }
 }
