@@ -160,22 +160,18 @@ private:
 
     // The rule for a value about to be read, from the member or array holding it.
     void check(Kind kind, double value) {
-        if (stack_.empty()) {
-            if (kind != Kind::Container) syntax("the file is not a JSON object");
-            return;
-        }
+        if (stack_.empty()) return;  // the top level: value() has seen it is an object
         const Frame& parent = stack_.back();
         if (parent.skip) return;
         auto whole = [&](double largest, const char* what) {
-            if (kind != Kind::Number)
-                refuse("is not a number: " + std::string(what) + " is a whole number from 0 to " +
-                       (largest == kLargestIndex ? std::string("2147483647") : std::string("2^53")));
+            const std::string rule = std::string(what) + " is a whole number from 0 to " +
+                                     (largest == kLargestIndex ? "2147483647" : "2^53");
+            if (kind != Kind::Number) refuse("is not a number: " + rule);
             if (!(std::isfinite(value) && value >= 0.0 && value <= largest && value == std::floor(value))) {
                 std::string shown = std::to_string(value);
                 if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e18)
                     shown = std::to_string(static_cast<long long>(value));
-                refuse("is " + shown + ": " + what + " is a whole number from 0 to " +
-                       (largest == kLargestIndex ? std::string("2147483647") : std::string("2^53")));
+                refuse("is " + shown + ": " + rule);
             }
         };
         if (parent.object) {
@@ -248,23 +244,14 @@ private:
             open(c == '{');
             return;
         }
+        // A refusal names the value by its JSON path (path()), not its byte: no position to keep.
         if (c == '"') {
             check(Kind::String, 0.0);
-            const std::size_t at = i_;
-            const std::string text = string();
-            const std::size_t after = i_;
-            i_ = at;
-            checkUri(text);
-            i_ = after;
+            checkUri(string());
             return;
         }
         if (c == '-' || std::isdigit(static_cast<unsigned char>(c))) {
-            const std::size_t at = i_;
-            const double v = number();
-            const std::size_t after = i_;
-            i_ = at;  // a refusal names where the number starts
-            check(Kind::Number, v);
-            i_ = after;
+            check(Kind::Number, number());
             return;
         }
         for (const std::string_view word : {"true", "false", "null"})
@@ -284,42 +271,28 @@ private:
             whitespace();
             if (i_ >= s_.size()) syntax("the text ends inside " + path());
             Frame& top = stack_.back();
-            const char c = s_[i_];
+            const char c = s_[i_], close = top.object ? '}' : ']';
+            if (c == close) {
+                ++i_;
+                stack_.pop_back();
+                if (!stack_.empty()) ++stack_.back().count;  // the container was its parent's value
+                continue;
+            }
+            if (top.count > 0) {
+                if (c != ',') syntax(std::string("expected ',' or '") + close + "'");
+                ++i_;
+                whitespace();
+            }
             if (top.object) {
-                if (c == '}') {
-                    ++i_;
-                    stack_.pop_back();
-                    if (!stack_.empty()) ++stack_.back().count;
-                    continue;
-                }
-                if (top.count > 0) {
-                    if (c != ',') syntax("expected ',' or '}'");
-                    ++i_;
-                    whitespace();
-                }
                 if (i_ >= s_.size() || s_[i_] != '"') syntax("expected a member's name in quotes");
                 top.member = string();
                 whitespace();
                 if (i_ >= s_.size() || s_[i_] != ':') syntax("expected ':' after \"" + top.member + "\"");
                 ++i_;
-                const std::size_t depth = stack_.size();
-                value();
-                if (stack_.size() == depth) ++stack_.back().count;  // a scalar member
-            } else {
-                if (c == ']') {
-                    ++i_;
-                    stack_.pop_back();
-                    if (!stack_.empty()) ++stack_.back().count;
-                    continue;
-                }
-                if (top.count > 0) {
-                    if (c != ',') syntax("expected ',' or ']'");
-                    ++i_;
-                }
-                const std::size_t depth = stack_.size();
-                value();
-                if (stack_.size() == depth) ++stack_.back().count;
             }
+            const std::size_t depth = stack_.size();
+            value();  // `top` may be gone: a container value pushes a frame
+            if (stack_.size() == depth) ++stack_.back().count;  // a scalar, done
         }
         // A GLB's JSON chunk is padded to 4 bytes (with spaces, or NULs by some writers).
         while (i_ < s_.size() && (s_[i_] == '\0' || s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\n' || s_[i_] == '\r')) ++i_;
