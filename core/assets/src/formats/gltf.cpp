@@ -29,8 +29,6 @@
 #include <iterator>
 #include <limits>
 #include <map>
-#include <unordered_map>
-#include <unordered_set>
 #include <numbers>
 #include <set>
 #include <string>
@@ -73,8 +71,9 @@ bool isImageFile(const std::string& path) {
 // geometry), but not external images, which the texture cache decodes later (and only if a
 // material uses them); with no folder (loadGltfFromMemory) nothing at all.
 struct FileAccess {
-    bool readExternal = true;
-    bool readImages = false;
+    FileAccess(bool external, bool images) : readExternal(external), readImages(images) {}
+    bool readExternal;
+    bool readImages;
     // Bytes of external files read so far for this asset: tinygltf keeps a copy per reference, so
     // 12 000 images naming one 365 KB file (a 217 KB glTF) held 4.4 GB. Past kMaxExternalBytes the
     // read is refused, naming the file (issue 34: any input under 1 MB stays under 2 GB).
@@ -105,7 +104,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
         return false;  // decoded later, by the texture cache
     std::error_code ec;
     const std::uintmax_t size = fs::file_size(path, ec);
-    if (!ec && (size > kMaxExternalBytes || access->bytesRead + size > kMaxExternalBytes)) {
+    if (!ec && access->bytesRead + size > kMaxExternalBytes) {
         if (err)
             *err += "its buffers and images name more than " + std::to_string(kMaxExternalBytes >> 20) +
                     " MiB of files in all (each reference is a copy), reached at '" + path + "'\n";
@@ -225,22 +224,19 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
     if (bytes.size() > 0xffffffffu) throw AssetError(file, "the file is larger than 4 GiB, more than glTF can address");
     const auto length = static_cast<unsigned>(bytes.size());
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    const std::string notReadable = binary ? "not a readable GLB file" : "not a readable glTF file";
     bool ok = false;
     if (binary)
         if (const std::string problem = glbContainerProblem(bytes); !problem.empty())
-            throw AssetError(file, "not a readable GLB file: " + problem);
+            throw AssetError(file, notReadable + ": " + problem);
     refuseUnreadRequired(requiredExtensions(jsonOf(bytes, binary)), file);
     // Before tinygltf: it recurses per level of nesting and reads indices as plain ints.
     std::set<std::string> imageUris;
     if (const gltfjson::Problem problem = gltfjson::problem(jsonOf(bytes, binary), kSupportedExtensions, &imageUris);
         !problem.empty())
-        throw AssetError(file, problem.notJson ? std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") +
-                                                     problem.text
-                                               : problem.text);
-    for (const std::string& uri : imageUris) {
-        access.imageFiles.insert((fs::path(folder) / uri).lexically_normal().string());
-        access.imageFiles.insert(fs::path(folder + "/" + uri).lexically_normal().string());
-    }
+        throw AssetError(file, problem.notJson ? notReadable + ": " + problem.text : problem.text);
+    // As tinygltf joins them to the folder (with a '/', an absolute URI too).
+    for (const std::string& uri : imageUris) access.imageFiles.insert(fs::path(folder + "/" + uri).lexically_normal().string());
     try {
         if (binary) {
             ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, folder);
@@ -252,13 +248,12 @@ tinygltf::Model parseModel(std::span<const unsigned char> bytes, const fs::path&
         throw;  // out of memory: the caller's own message
     } catch (const std::exception& e) {
         // tinygltf 2.7 lets a few library exceptions out (a vector's range check): named here.
-        throw AssetError(file, std::string(binary ? "not a readable GLB file: " : "not a readable glTF file: ") + e.what());
+        throw AssetError(file, notReadable + ": " + e.what());
     }
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         std::replace(err.begin(), err.end(), '\n', ';');
-        throw AssetError(file, std::string(binary ? "not a readable GLB file" : "not a readable glTF file") +
-                                   (err.empty() ? std::string() : ": " + err));
+        throw AssetError(file, notReadable + (err.empty() ? std::string() : ": " + err));
     }
     return model;
 }
@@ -992,20 +987,20 @@ private:
 
 Asset loadGltfFromMemory(std::span<const unsigned char> bytes, const fs::path& file) {
     if (bytes.empty()) throw AssetError(file, "file is empty (0 bytes)");
-    const tinygltf::Model model = parseModel(bytes, file, FileAccess{false, false, 0, {}});
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess(false, false));
     return Reader(model, file).read();
 }
 
 Asset loadGltfFile(const fs::path& path) {
     const std::vector<unsigned char> bytes = readAssetFile(path);
     if (bytes.empty()) throw AssetError(path, "file is empty (0 bytes)");
-    const tinygltf::Model model = parseModel(bytes, path, FileAccess{true, false, 0, {}});
+    const tinygltf::Model model = parseModel(bytes, path, FileAccess(true, false));
     return Reader(model, path).read();
 }
 
 std::vector<EncodedImage> gltfImages(const fs::path& file) {
     const std::vector<unsigned char> bytes = readAssetFile(file);
-    const tinygltf::Model model = parseModel(bytes, file, FileAccess{true, true, 0, {}});
+    const tinygltf::Model model = parseModel(bytes, file, FileAccess(true, true));
     std::vector<EncodedImage> images;
     images.reserve(model.images.size());
     for (const tinygltf::Image& i : model.images) images.push_back(EncodedImage{i.image, i.mimeType});
