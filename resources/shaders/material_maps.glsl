@@ -17,8 +17,8 @@ uniform bool uUseBaseColorMap, uUseMetallicMap, uUseRoughnessMap, uUseNormalMap,
 uniform int uMetallicChannel, uRoughnessChannel;
 uniform vec3 uBaseColor;
 uniform float uBaseAlpha, uMetallic, uRoughness;
-// The dielectric's Fresnel (layered.h: dielectricF0, its F90 specularWeight, and the F0 of what the
-// diffuse loses, diffuseFresnelF0's dielectric part), mixed per fragment with the mapped metal's.
+// The dielectric's Fresnel (layered.h, dielectricFresnel: f0, f90, diffuseF0), mixed per fragment
+// with the mapped metal's.
 uniform vec3 uDielectricF0;
 uniform float uDielectricF90, uDiffuseDielectricF0;
 uniform float uNormalScale, uOcclusionStrength;

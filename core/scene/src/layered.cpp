@@ -18,33 +18,33 @@ bool hasCoat(const Layers& layers) { return layers.coat > 0.0f; }
 
 namespace {
 float metallicOf(const Layers& layers) { return std::clamp(layers.metallic, 0.0f, 1.0f); }
-float weightOf(const Layers& layers) { return std::clamp(layers.specularWeight, 0.0f, 1.0f); }
 }  // namespace
 
-Rgb dielectricF0(const Layers& layers) {
-    Rgb f0;
-    for (int c = 0; c < 3; ++c) f0[c] = std::min(layers.specular * layers.specularColor[c], 1.0f) * weightOf(layers);
-    return f0;
+DielectricFresnel dielectricFresnel(const Layers& layers) {
+    DielectricFresnel d;
+    d.f90 = std::clamp(layers.specularWeight, 0.0f, 1.0f);
+    for (int c = 0; c < 3; ++c) d.f0[c] = std::min(layers.specular * layers.specularColor[c], 1.0f) * d.f90;
+    // fresnel_mix's max over channels of F: F grows with F0, so it is the largest channel's.
+    d.diffuseF0 = std::max({d.f0.r, d.f0.g, d.f0.b});
+    return d;
 }
 
 Rgb specularF0(const Layers& layers) {
     const float m = metallicOf(layers);
-    return dielectricF0(layers) * (1.0f - m) + layers.baseColor * m;
+    return dielectricFresnel(layers).f0 * (1.0f - m) + layers.baseColor * m;
 }
 
 float specularF90(const Layers& layers) {
     const float m = metallicOf(layers);
-    return weightOf(layers) * (1.0f - m) + m;
+    return dielectricFresnel(layers).f90 * (1.0f - m) + m;
 }
 
 Rgb diffuseFresnelF0(const Layers& layers) {
     const float m = metallicOf(layers);
-    const Rgb& c = layers.specularColor;
-    const float strongest = std::min(layers.specular * std::max({c.r, c.g, c.b}), 1.0f) * weightOf(layers);
-    return Rgb(strongest) * (1.0f - m) + layers.baseColor * m;
+    return Rgb(dielectricFresnel(layers).diffuseF0) * (1.0f - m) + layers.baseColor * m;
 }
 
-Rgb diffuseColour(const Layers& layers) { return layers.baseColor * (1.0f - std::clamp(layers.metallic, 0.0f, 1.0f)); }
+Rgb diffuseColour(const Layers& layers) { return layers.baseColor * (1.0f - metallicOf(layers)); }
 
 LayerWeights layerWeights(const Layers& layers, double cosView, const SplitSumTable& table) {
     const double mu = std::clamp(cosView, 0.0, 1.0);

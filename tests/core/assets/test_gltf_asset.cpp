@@ -550,7 +550,7 @@ TEST(GltfMaterials, SpecularExtensionSetsTheDielectricsWeightAndColour) {
     EXPECT_NEAR(l.specular, 1.0f / 9.0f, 1e-6f);
     EXPECT_TRUE(set.warnings.empty()) << set.warnings.front();
     // The dielectric's F0: min(F0_ior · colour, 1) · weight, per channel.
-    const Rgb f0 = dielectricF0(l);
+    const Rgb f0 = dielectricFresnel(l).f0;
     EXPECT_NEAR(f0.r, 0.25f / 9.0f, 1e-6f);
     EXPECT_NEAR(f0.g, 0.125f / 9.0f, 1e-6f);
     EXPECT_NEAR(f0.b, 0.25f, 1e-6f);

@@ -145,12 +145,11 @@ bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
     gl->glUniform1f(u.baseAlpha, m.baseAlpha);
     gl->glUniform1f(u.metallic, l.metallic);
     gl->glUniform1f(u.roughness, l.roughness);
-    // The dielectric's Fresnel alone (metallic 0); the shader mixes it with the mapped metal's.
-    Layers dielectric = l;
-    dielectric.metallic = 0.0f;
-    gl->glUniform3fv(u.dielectricF0, 1, glm::value_ptr(dielectricF0(l)));
-    gl->glUniform1f(u.dielectricF90, specularF90(dielectric));
-    gl->glUniform1f(u.diffuseDielectricF0, diffuseFresnelF0(dielectric).r);
+    // The dielectric's Fresnel alone; the shader mixes it with the mapped metal's.
+    const DielectricFresnel dielectric = dielectricFresnel(l);
+    gl->glUniform3fv(u.dielectricF0, 1, glm::value_ptr(dielectric.f0));
+    gl->glUniform1f(u.dielectricF90, dielectric.f90);
+    gl->glUniform1f(u.diffuseDielectricF0, dielectric.diffuseF0);
     gl->glUniform1f(u.normalScale, m.normalScale);
     gl->glUniform1f(u.occlusionStrength, m.occlusionStrength);
     gl->glUniform3fv(u.emissive, 1, glm::value_ptr(m.emissiveFactor));

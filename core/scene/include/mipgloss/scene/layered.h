@@ -38,7 +38,14 @@ bool hasCoat(const Layers& layers);
 // extension's fresnel_mix takes, specularWeight · max over channels of F, whose F0 is
 // diffuseFresnelF0 (the dielectric's max channel, mixed with the metal's likewise) and F90
 // specularF90. Without the extension (colour 1, weight 1) all three are glTF's F0 and 1.
-Rgb dielectricF0(const Layers& layers);
+struct DielectricFresnel {
+    Rgb f0{0.04f};           // min(specular · specularColor, 1) · specularWeight
+    float f90 = 1.0f;        // specularWeight
+    float diffuseF0 = 0.04f; // f0's largest channel: the F0 of what the diffuse loses
+};
+// The dielectric's terms alone (metallic 0), which the maps program mixes per fragment with the
+// mapped metal's; the three below mix them with the material's own metallic.
+DielectricFresnel dielectricFresnel(const Layers& layers);
 Rgb specularF0(const Layers& layers);
 float specularF90(const Layers& layers);
 Rgb diffuseFresnelF0(const Layers& layers);

@@ -140,7 +140,7 @@ struct Layers {
     float coat = 0.0f;           // clear coat weight (0: none)
     float coatRoughness = 0.05f; // its lobe; its F0 is kDielectricF0
     MaterialMaps maps;           // texture maps (assets); none by default
-    // KHR_materials_specular (layered.h, dielectricF0): the dielectric's F0 is
+    // KHR_materials_specular (layered.h, dielectricFresnel): the dielectric's F0 is
     // min(specular · specularColor, 1) · specularWeight and its F90 specularWeight; the metal is
     // untouched. specularColor is in [0, kMaxSpecularColour] (the extension bounds it only by the
     // clamp to 1 after the product), specularWeight in [0, 1].
