@@ -119,12 +119,13 @@ TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
     {
+        // A JPEG is read once, into memory, where its end is checked and it is decoded.
         std::ifstream head(file, std::ios::binary);
         unsigned char magic[2] = {0, 0};
         if (head.read(reinterpret_cast<char*>(magic), 2) && magic[0] == 0xFF && magic[1] == 0xD8) {
             head.seekg(0);
             const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
-            if (const std::string problem = truncatedJpegProblem(bytes); !problem.empty()) throw TextureError(file, problem);
+            return decodeTextureFromMemory(bytes, file.string(), "image/jpeg", maxSize);
         }
     }
     const OIIO::ImageSpec config = straightAlpha();
