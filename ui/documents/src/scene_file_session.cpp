@@ -56,7 +56,7 @@ QString SceneFileSession::saveAsSuggestion() const {
 // ---------------------------------------------------------------------------------------------
 // New, open, save
 
-void SceneFileSession::replaceScene(Scene scene, SceneDocument::FileCameras cameras) {
+void SceneFileSession::replaceScene(Scene scene, FileCameras cameras) {
     document_->resetScene(std::move(scene), std::move(cameras));
     emit sceneReplaced();
 }

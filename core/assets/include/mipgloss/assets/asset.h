@@ -71,6 +71,9 @@ struct AssetCamera {
     float fovYDegrees = 45.0f;             // yfov
 };
 
+// The cameras of several asset files, by each file's absolute path (SceneObject::meshSource).
+using FileCameras = std::map<std::string, std::vector<AssetCamera>>;
+
 // The orbit camera that looks through `camera` once its asset is placed by `placement` (addAsset),
 // its target on the view axis as far ahead as `scene`'s centre (at least a thousandth of the
 // scene's radius ahead).

@@ -43,7 +43,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -121,7 +120,6 @@ public:
 
     // Replaces everything (open scene, new scene) and clears the undo stack; `cameras` are the
     // new scene's files' cameras (below).
-    using FileCameras = std::map<std::string, std::vector<AssetCamera>>;
     void resetScene(Scene scene, FileCameras cameras = {});
 
     // The cameras the scene's asset files hold (glTF cameras, asset.h), by the file's absolute

@@ -116,7 +116,7 @@ signals:
     void messageShown(const QString& message, bool error);
 
 private:
-    void replaceScene(Scene scene, SceneDocument::FileCameras cameras = {});
+    void replaceScene(Scene scene, FileCameras cameras = {});
     void setFile(const QString& file);
     void markSaved();                      // the document's scene is the saved one
     void matchesFile(const QString& path);  // opened or saved: its file, saved state, recent files

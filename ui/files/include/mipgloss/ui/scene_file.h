@@ -83,7 +83,6 @@
 #include <QByteArray>
 
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -117,7 +116,7 @@ struct SceneFileReport {
     std::vector<std::string> warnings;  // one line each, naming the file
     // The cameras each asset file the objects come from holds (asset.h: glTF cameras, in the
     // file's own space), by the file's absolute path; files without cameras are left out.
-    std::map<std::string, std::vector<AssetCamera>> cameras;
+    FileCameras cameras;
 };
 
 // The JSON text for `scene`, paths written relative to `sceneFile`'s folder (see above).
