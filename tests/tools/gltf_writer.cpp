@@ -199,6 +199,24 @@ int GltfWriter::addNode(int mesh, const std::vector<double>& translation, const 
 
 void GltfWriter::addToScene(int node) { model_.scenes[0].nodes.push_back(node); }
 
+int GltfWriter::addCamera(const std::string& name, double yfov, const std::vector<double>& translation,
+                          const std::vector<double>& rotation) {
+    tinygltf::Camera camera;
+    camera.name = name;
+    camera.type = "perspective";
+    camera.perspective.yfov = yfov;
+    camera.perspective.znear = 0.1;
+    model_.cameras.push_back(camera);
+    tinygltf::Node node;
+    node.camera = static_cast<int>(model_.cameras.size()) - 1;
+    node.translation = translation;
+    node.rotation = rotation;
+    model_.nodes.push_back(node);
+    const int index = static_cast<int>(model_.nodes.size()) - 1;
+    addToScene(index);
+    return index;
+}
+
 std::vector<unsigned char> GltfWriter::glb() {
     model_.buffers[0].uri.clear();
     tinygltf::TinyGLTF writer;

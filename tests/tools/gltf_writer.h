@@ -48,6 +48,11 @@ public:
     int addNode(int mesh, const std::vector<double>& translation = {}, const std::vector<double>& scale = {},
                 const std::vector<double>& rotation = {});
     void addToScene(int node);
+    // A perspective camera of vertical field `yfov` (radians) on a node of its own at
+    // `translation`, turned by the quaternion `rotation` (x, y, z, w), added to the scene; returns
+    // the node.
+    int addCamera(const std::string& name, double yfov, const std::vector<double>& translation,
+                  const std::vector<double>& rotation = {0.0, 0.0, 0.0, 1.0});
 
     tinygltf::Model& model() { return model_; }
     std::vector<unsigned char> glb();

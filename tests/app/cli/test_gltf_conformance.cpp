@@ -55,18 +55,7 @@ tinygltf::Material emitter(const std::string& name, glm::vec3 emissive, double a
 
 // A perspective camera at (0, 0, 3) looking down −Z, turned by `rotation` about its node.
 void addCamera(test::GltfWriter& w, const std::string& name, const glm::quat& rotation = glm::quat(1, 0, 0, 0)) {
-    tinygltf::Camera camera;
-    camera.name = name;
-    camera.type = "perspective";
-    camera.perspective.yfov = 0.6;
-    camera.perspective.znear = 0.1;
-    w.model().cameras.push_back(camera);
-    tinygltf::Node node;
-    node.camera = static_cast<int>(w.model().cameras.size()) - 1;
-    node.translation = {0.0, 0.0, 3.0};
-    node.rotation = {rotation.x, rotation.y, rotation.z, rotation.w};
-    w.model().nodes.push_back(node);
-    w.addToScene(static_cast<int>(w.model().nodes.size()) - 1);
+    w.addCamera(name, 0.6, {0.0, 0.0, 3.0}, {rotation.x, rotation.y, rotation.z, rotation.w});
 }
 
 // An 8 × 4 lat-long of one radiance: zeros (nothing to reflect) or ones (a white furnace).

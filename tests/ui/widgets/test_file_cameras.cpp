@@ -36,19 +36,8 @@ void writeQuadWithCameras(const std::filesystem::path& file) {
     test::GltfWriter w;
     w.addToScene(w.addNode(w.addMesh(test::texturedQuad(), w.addMaterial(test::pbrMaterial("grey", {0.5, 0.5, 0.5, 1}, 0, 0.5)))));
     for (const auto& [name, turn] : {std::pair{std::string("front"), 0.0f}, std::pair{std::string("rolled"), 90.0f}}) {
-        tinygltf::Camera camera;
-        camera.name = name;
-        camera.type = "perspective";
-        camera.perspective.yfov = 0.6;
-        camera.perspective.znear = 0.1;
-        w.model().cameras.push_back(camera);
         const glm::quat q = glm::angleAxis(glm::radians(turn), glm::vec3(0, 0, 1));
-        tinygltf::Node node;
-        node.camera = static_cast<int>(w.model().cameras.size()) - 1;
-        node.translation = {0.0, 0.0, 3.0};
-        node.rotation = {q.x, q.y, q.z, q.w};
-        w.model().nodes.push_back(node);
-        w.addToScene(static_cast<int>(w.model().nodes.size()) - 1);
+        w.addCamera(name, 0.6, {0.0, 0.0, 3.0}, {q.x, q.y, q.z, q.w});
     }
     w.writeGltf(file);
 }
