@@ -96,7 +96,7 @@ TEST(GgxAlbedoTable, AgreesWithBruteForceQuadratureOfTheBrdf) {
     for (double r : {0.3, 0.5, 0.75, 1.0})
         for (double mu : {0.1, 0.35, 0.8, 1.0}) {
             const double alpha = r * r;
-            const glm::dvec3 v = viewAt(mu), n(0, 0, 1);
+            const glm::dvec3 v = viewAt(mu);
             double whole = 0.0, edge = 0.0, diffuseEdge = 0.0;
             hemisphere([&](const glm::dvec3& l) {
                 const glm::dvec3 h = glm::normalize(l + v);

@@ -416,7 +416,11 @@ void SceneDocument::addFileCameras(const std::string& file, std::vector<AssetCam
 std::vector<SceneDocument::CameraView> SceneDocument::fileCameraViews() const {
     std::vector<CameraView> out;
     const Bounds bounds = sceneBounds(scene_);
-    for (const auto& [file, cameras] : fileCameras_) {
+    for (const auto& entry : fileCameras_) {
+        // A named reference, not the structured binding: clang 14 (the sanitizer build) does not
+        // let a lambda capture a binding (C++20 P1091 landed in clang 16).
+        const std::string& file = entry.first;
+        const std::vector<AssetCamera>& cameras = entry.second;
         const auto first = std::find_if(scene_.objects.begin(), scene_.objects.end(),
                                         [&](const SceneObject& o) { return o.meshSource == file; });
         if (first == scene_.objects.end()) continue;
