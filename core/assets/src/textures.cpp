@@ -79,15 +79,52 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs,
     std::vector<Result> results(todo.size());
     std::vector<std::string> unread(todo.size());
     const std::vector<std::shared_ptr<const EncodedImage>> encoded = encodedImagesOf(todo, kept, unread);
+    // The budget, planned from the headers before a pixel is decoded: each image's side limit is
+    // maxSize, halved for the largest images until the planned total fits, so a file whose headers
+    // promise more than the budget is decoded downsized (as its rows are read: texture.h), never
+    // at full size first. An image whose header cannot be read is left to its decoding to refuse.
+    std::vector<TextureSize> planned(todo.size());
+    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+        if (!unread[i].empty()) return;
+        try {
+            planned[i] = fittedTextureSize(encoded[i] ? textureSizeFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType)
+                                                      : textureSize(todo[i].file),
+                                           maxSize_);
+        } catch (const std::exception&) {
+        }
+    });
+    std::vector<int> sideLimit(todo.size(), maxSize_);
+    {
+        std::size_t total = bytes();
+        for (const TextureSize& p : planned) total += p.rgbaBytes();
+        while (total > budgetBytes_) {
+            std::size_t largest = todo.size();
+            for (std::size_t i = 0; i < todo.size(); ++i)
+                if (planned[i].rgbaBytes() > 0 && (largest == todo.size() || planned[i].rgbaBytes() > planned[largest].rgbaBytes()))
+                    largest = i;
+            if (largest == todo.size() || (planned[largest].width <= 1 && planned[largest].height <= 1)) break;
+            sideLimit[largest] = std::max(planned[largest].width, planned[largest].height) / 2;
+            total -= planned[largest].rgbaBytes();
+            planned[largest] = fittedTextureSize(planned[largest], sideLimit[largest]);
+            total += planned[largest].rgbaBytes();
+        }
+    }
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
         if (!unread[i].empty()) {
             results[i].problem = unread[i];
             return;
         }
         try {
+            const int side = sideLimit[i];
             results[i].image = std::make_shared<TextureImage>(
-                encoded[i] ? decodeTextureFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType, maxSize_)
-                           : decodeTexture(todo[i].file, maxSize_));
+                encoded[i] ? decodeTextureFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType, side)
+                           : decodeTexture(todo[i].file, side));
+            TextureImage& image = *results[i].image;
+            // Downsized for the budget, not for maxSize: its one downsizing warning says so.
+            if (side < maxSize_ && (image.width != image.fileWidth || image.height != image.fileHeight))
+                image.warnings.back() = "texture of " + std::to_string(image.fileWidth) + " x " + std::to_string(image.fileHeight) +
+                                        " downsized to " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                        " to keep all textures within the " + std::to_string(budgetBytes_ >> 20) + " MiB budget";
         } catch (const FileError& e) {
             results[i].problem = e.what();
         } catch (const std::exception& e) {  // out of memory on a huge image, ...
@@ -100,7 +137,8 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs,
     for (const auto& [key, image] : images_) total += image->bytes();
     for (const Result& r : results)
         if (r.image) total += r.image->bytes();
-    // Over the budget: halve the largest new image until the total fits.
+    // Over the budget still (a header that did not say the size it decoded to): halve the largest
+    // new image until the total fits.
     while (total > budgetBytes_) {
         Result* largest = nullptr;
         for (Result& r : results)

@@ -21,9 +21,51 @@ std::string extensionForMime(const std::string& mime, const std::string& name) {
     return ext.empty() ? ".png" : ext;
 }
 
-TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSize) {
-    const OIIO::ImageSpec& spec = in.spec();
-    TextureImage image;
+// Spreads `channels` 8-bit values a pixel, stored 4 bytes apart, into RGBA in place.
+void expandToRgba(std::uint8_t* rgba, std::uint64_t pixels, int channels) {
+    for (std::uint64_t i = 0; i < pixels; ++i) {
+        std::uint8_t* q = &rgba[i * 4];
+        switch (channels) {
+            case 1: q[1] = q[2] = q[0]; q[3] = 255; break;
+            case 2: q[3] = q[1]; q[1] = q[2] = q[0]; break;
+            case 3: q[3] = 255; break;
+            default: break;
+        }
+    }
+}
+
+// One 2×2 box halving of a w × h RGBA8 image (odd sizes rounded up, the last row or column
+// counted once), into `half`.
+void halveOnce(const std::vector<std::uint8_t>& rgba, int w, int h, std::vector<std::uint8_t>& half) {
+    const int hw = (w + 1) / 2, hh = (h + 1) / 2;
+    half.assign(static_cast<std::size_t>(hw) * static_cast<std::size_t>(hh) * 4, 0);
+    for (int y = 0; y < hh; ++y)
+        for (int x = 0; x < hw; ++x)
+            for (int c = 0; c < 4; ++c) {
+                unsigned sum = 0, count = 0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) {
+                        const int sx = 2 * x + dx, sy = 2 * y + dy;
+                        if (sx >= w || sy >= h) continue;
+                        sum += rgba[(static_cast<std::size_t>(sy) * w + sx) * 4 + c];
+                        ++count;
+                    }
+                half[(static_cast<std::size_t>(y) * hw + x) * 4 + c] = static_cast<std::uint8_t>((sum + count / 2) / count);
+            }
+}
+
+// How many halvings bring w × h within maxSize on a side (downsizeTexture's loop, counted).
+int halvingsToFit(int w, int h, int maxSize) {
+    int k = 0;
+    while (w > maxSize || h > maxSize) {
+        w = (w + 1) / 2;
+        h = (h + 1) / 2;
+        ++k;
+    }
+    return k;
+}
+
+void checkDimensions(const OIIO::ImageSpec& spec, const std::string& name) {
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw TextureError(name, "the image has no pixels (" + std::to_string(spec.width) + " x " +
                                      std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) + " channels)");
@@ -32,28 +74,62 @@ TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSi
         throw TextureError(name, "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                                      " pixels, more than a texture may have (" + std::to_string(kMaxTexturePixels) +
                                      ")");
+}
+
+std::string readError(OIIO::ImageInput& in) {
+    const std::string err = in.geterror();
+    return "cannot read the pixels (truncated or corrupt image)" + (err.empty() ? std::string() : ": " + err);
+}
+
+TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSize) {
+    const OIIO::ImageSpec& spec = in.spec();
+    checkDimensions(spec, name);
+    maxSize = std::max(maxSize, 1);
+    const std::uint64_t pixels = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
     const int channels = std::min(spec.nchannels, 4);
-    // Read straight into the RGBA buffer (4 bytes a pixel, the file's channels first), then fill
-    // in the rest in place: no second copy of the image (a 16384² PNG needed 0.8 GB more).
-    image.rgba.resize(pixels * 4);
-    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.rgba.data(), 4)) {
-        std::string err = in.geterror();
-        throw TextureError(name, "cannot read the pixels (truncated or corrupt image)" +
-                                     (err.empty() ? std::string() : ": " + err));
-    }
+    TextureImage image;
     image.width = image.fileWidth = spec.width;
     image.height = image.fileHeight = spec.height;
     image.channels = channels;
-    for (std::uint64_t i = 0; i < pixels; ++i) {
-        std::uint8_t* q = &image.rgba[i * 4];
-        switch (channels) {
-            case 1: q[1] = q[2] = q[0]; q[3] = 255; break;
-            case 2: q[3] = q[1]; q[1] = q[2] = q[0]; break;
-            case 3: q[3] = 255; break;
-            default: break;
+    const int halvings = halvingsToFit(spec.width, spec.height, maxSize);
+    if (halvings == 0 || spec.tile_width > 0) {
+        // Read straight into the RGBA buffer (4 bytes a pixel, the file's channels first), then
+        // fill in the rest in place: no second copy of the image.
+        image.rgba.resize(pixels * 4);
+        if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.rgba.data(), 4))
+            throw TextureError(name, readError(in));
+        expandToRgba(image.rgba.data(), pixels, channels);
+        downsizeTexture(image, maxSize);
+    } else {
+        // Larger than maxSize (the header says so before a pixel is decoded): read it in bands of
+        // 2^halvings rows, each band halved to one row as it comes. A band starts at a multiple
+        // of its height, so every 2 × 2 box of every level lies inside one band and the result is
+        // downsizeTexture's on the whole image, byte for byte; but the full-size image is never
+        // held (a 16384² texture held 1 GiB of RGBA to keep 64 MiB).
+        const int band = 1 << halvings;
+        const int outWidth = (spec.width + band - 1) / band, outHeight = (spec.height + band - 1) / band;
+        image.rgba.resize(static_cast<std::size_t>(outWidth) * static_cast<std::size_t>(outHeight) * 4);
+        std::vector<std::uint8_t> strip, half;
+        for (int row = 0, y0 = 0; y0 < spec.height; ++row, y0 += band) {
+            const int rows = std::min(band, spec.height - y0);
+            const std::uint64_t stripPixels = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(rows);
+            strip.assign(stripPixels * 4, 0);
+            if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8,
+                                   strip.data(), 4))
+                throw TextureError(name, readError(in));
+            expandToRgba(strip.data(), stripPixels, channels);
+            int w = spec.width, h = rows;
+            for (int i = 0; i < halvings; ++i) {
+                halveOnce(strip, w, h, half);
+                strip.swap(half);
+                w = (w + 1) / 2;
+                h = (h + 1) / 2;
+            }
+            std::copy(strip.begin(), strip.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(row) * outWidth * 4);
         }
+        image.width = outWidth;
+        image.height = outHeight;
     }
-    downsizeTexture(image, maxSize);
     if (image.width != image.fileWidth || image.height != image.fileHeight)
         image.warnings.push_back(name + ": texture of " + std::to_string(image.fileWidth) + " x " +
                                  std::to_string(image.fileHeight) + " downsized to " + std::to_string(image.width) +
@@ -75,27 +151,12 @@ OIIO::ImageSpec straightAlpha() {
 
 void downsizeTexture(TextureImage& image, int maxSize) {
     maxSize = std::max(maxSize, 1);
+    std::vector<std::uint8_t> half;
     while (image.width > maxSize || image.height > maxSize) {
-        const int w = image.width, h = image.height;
-        const int hw = (w + 1) / 2, hh = (h + 1) / 2;
-        std::vector<std::uint8_t> half(static_cast<std::size_t>(hw) * static_cast<std::size_t>(hh) * 4);
-        for (int y = 0; y < hh; ++y)
-            for (int x = 0; x < hw; ++x)
-                for (int c = 0; c < 4; ++c) {
-                    unsigned sum = 0, count = 0;
-                    for (int dy = 0; dy < 2; ++dy)
-                        for (int dx = 0; dx < 2; ++dx) {
-                            const int sx = 2 * x + dx, sy = 2 * y + dy;
-                            if (sx >= w || sy >= h) continue;
-                            sum += image.rgba[(static_cast<std::size_t>(sy) * w + sx) * 4 + c];
-                            ++count;
-                        }
-                    half[(static_cast<std::size_t>(y) * hw + x) * 4 + c] =
-                        static_cast<std::uint8_t>((sum + count / 2) / count);
-                }
-        image.rgba = std::move(half);
-        image.width = hw;
-        image.height = hh;
+        halveOnce(image.rgba, image.width, image.height, half);
+        image.rgba.swap(half);
+        image.width = (image.width + 1) / 2;
+        image.height = (image.height + 1) / 2;
     }
 }
 
@@ -115,33 +176,26 @@ static std::string truncatedJpegProblem(std::span<const unsigned char> bytes) {
     return "a truncated JPEG (" + std::to_string(bytes.size()) + " bytes, no end-of-image marker after its last scan)";
 }
 
-TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
+namespace {
+
+// Opens `file` (its header read, no pixels), or throws naming it.
+std::unique_ptr<OIIO::ImageInput> openFile(const std::filesystem::path& file) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
-    {
-        // A JPEG is read once, into memory, where its end is checked and it is decoded.
-        std::ifstream head(file, std::ios::binary);
-        unsigned char magic[2] = {0, 0};
-        if (head.read(reinterpret_cast<char*>(magic), 2) && magic[0] == 0xFF && magic[1] == 0xD8) {
-            head.seekg(0);
-            const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
-            return decodeTextureFromMemory(bytes, file.string(), "image/jpeg", maxSize);
-        }
-    }
     const OIIO::ImageSpec config = straightAlpha();
     auto in = OIIO::ImageInput::open(file.string(), &config);
     if (!in) {
         std::string err = OIIO::geterror();
         throw TextureError(file, "not a readable image" + (err.empty() ? std::string() : ": " + err));
     }
-    return readOpened(*in, file.string(), maxSize);
+    return in;
 }
 
-TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
-                                     const std::string& mimeType, int maxSize) {
+// Opens `bytes` through `reader` (which must outlive what is returned), or throws naming it.
+std::unique_ptr<OIIO::ImageInput> openMemory(OIIO::Filesystem::IOMemReader& reader, std::span<const unsigned char> bytes,
+                                             const std::string& nameForMessages, const std::string& mimeType) {
     if (bytes.empty()) throw TextureError(nameForMessages, "the image is empty (0 bytes)");
     if (const std::string problem = truncatedJpegProblem(bytes); !problem.empty()) throw TextureError(nameForMessages, problem);
-    OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
     const std::string fakeName = "embedded" + extensionForMime(mimeType, nameForMessages);
     // With a configuration, OpenImageIO 2.4's readers take the proxy from it (the argument alone is
     // dropped when they read the configuration).
@@ -153,7 +207,57 @@ TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const
         std::string err = OIIO::geterror();
         throw TextureError(nameForMessages, "not a readable image" + (err.empty() ? std::string() : ": " + err));
     }
-    return readOpened(*in, nameForMessages, maxSize);
+    return in;
+}
+
+bool isJpegFile(const std::filesystem::path& file) {
+    std::ifstream head(file, std::ios::binary);
+    unsigned char magic[2] = {0, 0};
+    return head.read(reinterpret_cast<char*>(magic), 2) && magic[0] == 0xFF && magic[1] == 0xD8;
+}
+
+TextureSize sizeOf(OIIO::ImageInput& in, const std::string& name) {
+    checkDimensions(in.spec(), name);
+    return {in.spec().width, in.spec().height};
+}
+
+}  // namespace
+
+TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
+    if (isJpegFile(file)) {
+        // A JPEG is read once, into memory, where its end is checked and it is decoded.
+        std::ifstream head(file, std::ios::binary);
+        const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
+        return decodeTextureFromMemory(bytes, file.string(), "image/jpeg", maxSize);
+    }
+    return readOpened(*openFile(file), file.string(), maxSize);
+}
+
+TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
+                                     const std::string& mimeType, int maxSize) {
+    OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
+    return readOpened(*openMemory(reader, bytes, nameForMessages, mimeType), nameForMessages, maxSize);
+}
+
+TextureSize textureSize(const std::filesystem::path& file) {
+    return sizeOf(*openFile(file), file.string());
+}
+
+TextureSize textureSizeFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
+                                  const std::string& mimeType) {
+    OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(bytes.data()), bytes.size());
+    return sizeOf(*openMemory(reader, bytes, nameForMessages, mimeType), nameForMessages);
+}
+
+TextureSize fittedTextureSize(TextureSize size, int maxSize) {
+    maxSize = std::max(maxSize, 1);
+    while (size.width > maxSize || size.height > maxSize) {
+        size.width = (size.width + 1) / 2;
+        size.height = (size.height + 1) / 2;
+    }
+    return size;
 }
 
 }  // namespace mipgloss

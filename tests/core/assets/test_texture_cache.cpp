@@ -165,3 +165,111 @@ TEST(TextureDecode, GreyAndGreyAlphaExpandToRgbaInPlace) {
             }
     }
 }
+
+namespace {
+
+// A w × h image of `channels` 8-bit channels, noise (every box average differs from its neighbours').
+TestImage noise(int w, int h, int channels) {
+    return makeImage(w, h, channels, [=](int x, int y) {
+        std::vector<std::uint8_t> texel;
+        for (int c = 0; c < channels; ++c)
+            texel.push_back(static_cast<std::uint8_t>(((x * 73856093u) ^ (y * 19349663u) ^ (c * 83492791u)) >> 7));
+        return texel;
+    });
+}
+
+}  // namespace
+
+// An image larger than maxSize is halved as its rows are read, in bands, never held whole
+// (texture.h): the result is the whole image decoded and then halved, byte for byte, for odd
+// sizes (the last row and column of each level counted once) and every channel count, from a file
+// and from memory, with the downsizing warning naming both sizes.
+TEST(TextureDecode, HalvingWhileReadingEqualsHalvingTheWholeImage) {
+    TempDir dir;
+    for (int channels : {1, 2, 3, 4})
+        for (const auto& [w, h] : {std::pair{203, 77}, std::pair{64, 129}, std::pair{1, 33}}) {
+            const TestImage image = noise(w, h, channels);
+            const fs::path file = dir / ("noise" + std::to_string(channels) + ".png");
+            writePng(image, file);
+            TextureImage whole = decodeTexture(file, 1 << 14);
+            ASSERT_EQ(whole.width, w);
+            ASSERT_TRUE(whole.warnings.empty());
+            for (int side : {100, 30, 13, 2, 1}) {
+                TextureImage expected = whole;
+                downsizeTexture(expected, side);
+                for (const TextureImage& got : {decodeTexture(file, side), decodeTextureFromMemory(encodePng(image), "noise.png", "image/png", side)}) {
+                    const std::string where = std::to_string(w) + " x " + std::to_string(h) + ", " +
+                                              std::to_string(channels) + " channels, side " + std::to_string(side);
+                    ASSERT_EQ(got.width, expected.width) << where;
+                    ASSERT_EQ(got.height, expected.height) << where;
+                    EXPECT_EQ(got.fileWidth, w);
+                    EXPECT_EQ(got.fileHeight, h);
+                    EXPECT_TRUE(got.rgba == expected.rgba) << where;
+                    const bool downsized = got.width != w || got.height != h;
+                    ASSERT_EQ(got.warnings.size(), downsized ? 1u : 0u) << where;
+                    if (downsized) {
+                        EXPECT_NE(got.warnings[0].find(std::to_string(w) + " x " + std::to_string(h) + " downsized to " +
+                                                       std::to_string(got.width) + " x " + std::to_string(got.height)),
+                                  std::string::npos) << got.warnings[0];
+                    }
+                }
+            }
+        }
+}
+
+// The header gives an image's size before a pixel is decoded; a header past the pixel limit is
+// refused naming the file.
+TEST(TextureDecode, SizeFromTheHeaderAlone) {
+    TempDir dir;
+    const fs::path file = dir / "wide.png";
+    writePng(noise(300, 7, 3), file);
+    const TextureSize size = textureSize(file);
+    EXPECT_EQ(size.width, 300);
+    EXPECT_EQ(size.height, 7);
+    EXPECT_EQ(fittedTextureSize(size, 100).width, 75);
+    EXPECT_EQ(fittedTextureSize(size, 100).height, 2);
+    const TextureSize fromMemory = textureSizeFromMemory(encodePng(noise(5, 9, 1)), "small.png", "image/png");
+    EXPECT_EQ(fromMemory.width, 5);
+    EXPECT_EQ(fromMemory.height, 9);
+    try {
+        textureSize(dir / "absent.png");
+        ADD_FAILURE() << "a missing file has no size";
+    } catch (const TextureError& e) {
+        EXPECT_NE(std::string(e.what()).find("absent.png"), std::string::npos) << e.what();
+    }
+}
+
+// The budget is planned from the headers: three 256² images (256 KiB of RGBA each) under a
+// 200 KiB budget are each decoded at the size the plan gives (the largest halved in turn until the
+// total fits), equal to the whole image halved, each with one warning naming both sizes and the
+// budget; what the cache holds is within the budget.
+TEST(TextureCache, TheBudgetIsPlannedFromTheHeadersBeforeDecoding) {
+    TempDir dir;
+    std::vector<TextureRef> refs;
+    std::vector<fs::path> files;
+    for (int i = 0; i < 3; ++i) {
+        files.push_back(dir / ("big" + std::to_string(i) + ".png"));
+        writePng(noise(256, 256 - i, 3), files.back());
+        TextureRef ref;
+        ref.file = files.back().string();
+        refs.push_back(ref);
+    }
+    const std::size_t budget = 200 << 10;
+    TextureCache cache(4096, budget);
+    const std::vector<std::string> warnings = cache.load(refs);
+    EXPECT_LE(cache.bytes(), budget);
+    EXPECT_GT(cache.bytes(), budget / 4) << "halved no further than the budget needs";
+    ASSERT_EQ(warnings.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::shared_ptr<const TextureImage> got = cache.find(refs[i]);
+        ASSERT_TRUE(got);
+        TextureImage expected = decodeTexture(files[i], 1 << 14);
+        downsizeTexture(expected, std::max(got->width, got->height));
+        EXPECT_EQ(got->width, expected.width);
+        EXPECT_TRUE(got->rgba == expected.rgba) << files[i];
+        const std::string& w = warnings[i];
+        EXPECT_NE(w.find(files[i].string()), std::string::npos) << w;
+        EXPECT_NE(w.find("256 x " + std::to_string(256 - i) + " downsized to " + std::to_string(got->width)), std::string::npos) << w;
+        EXPECT_NE(w.find("MiB budget"), std::string::npos) << w;
+    }
+}

@@ -7,7 +7,9 @@
 // Validation (TextureError names the file and the problem): unreadable or truncated data, no
 // pixels, more than kMaxTexturePixels pixels (a corrupt header, or no texture an artist means).
 // An image larger than `maxSize` on a side is halved (2×2 box) until it fits, with a warning that
-// says from what size to what: the GPU memory budget (docs/assets.md).
+// says from what size to what: the GPU memory budget (docs/assets.md). The halving is done as the
+// rows are read, in bands, so decoding never holds more than the downsized image and one band:
+// peak memory follows maxSize, not the file's header.
 #pragma once
 
 #include "mipgloss/io/file_error.h"
@@ -43,6 +45,18 @@ TextureImage decodeTexture(const std::filesystem::path& file, int maxSize = kDef
 // "image/jpeg") tells OpenImageIO the format.
 TextureImage decodeTextureFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
                                      const std::string& mimeType, int maxSize = kDefaultMaxTextureSize);
+
+// An image's size from its header alone, no pixel decoded (TextureCache plans its budget with it);
+// throws TextureError as decoding would for a missing, unreadable, empty or oversized image.
+struct TextureSize {
+    int width = 0, height = 0;
+    std::size_t rgbaBytes() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4; }
+};
+TextureSize textureSize(const std::filesystem::path& file);
+TextureSize textureSizeFromMemory(std::span<const unsigned char> bytes, const std::string& nameForMessages,
+                                  const std::string& mimeType);
+// The size decoding at maxSize gives (halved until both sides fit).
+TextureSize fittedTextureSize(TextureSize size, int maxSize);
 
 // Halves `image` (2×2 box, odd sizes rounded up, the last row or column counted once) until both
 // sides are at most maxSize.
