@@ -2,7 +2,10 @@
 """Mutation fuzzer run from outside (issue 11's "Must show"): damaged mesh, scene and library files
 through `mipgloss render` / `mipgloss library list`.
 
-Seeds: the OBJ files of tests/assets/meshes, and small files this script writes itself in every
+Seeds: the OBJ files of tests/assets/meshes, the glTF fuzz target's seeds (tests/fuzz/corpus/
+gltf_import: .gltf and .glb, through `render --mesh` and `library import-gltf`, mutated in their
+JSON's structure as tests/fuzz/gltf_mutator.h does: wrapped indices, odd numbers, deep nesting,
+wrong kinds, hostile URIs, repeated indices), and small files this script writes itself in every
 format we read (OBJ, OFF ASCII and binary, PLY ASCII and binary little/big endian, STL ASCII and
 binary, OM as OpenMesh 9 writes it, a scene JSON and a material library JSON). Each case is a seed with byte mutations (bit
 flips, random or "interesting" bytes, inserts, deletes, duplicated chunks, truncation) or a
@@ -546,6 +549,73 @@ def json_mutation(data, rng):
     return text.encode()
 
 
+GLTF_INDEX_KEYS = (b"mesh|material|source|sampler|bufferView|buffer|index|indices|scene|camera|skin|node|"
+                   b"POSITION|NORMAL|TANGENT|TEXCOORD_0|TEXCOORD_1|COLOR_0|texCoord")
+GLTF_NUMBERS = [b"4294967296", b"4294967297", b"-1", b"-4", b"2147483647", b"2147483648", b"1e308", b"-1e308",
+                b"-0", b"0.5", b"1e-320", b"9007199254740993", b"18446744073709551616", b"1e999", b"3.0"]
+GLTF_KINDS = [b'"x"', b"null", b"true", b"{}", b"[]", b"[1,2]", b"[null]", b'{"a":1}']
+GLTF_STRINGS = [b"../outside.png", b"/etc/passwd", b"tex.png%00.jpg", b"%2e%2e/x.bin", b"data:image/png;base64,!!!",
+                b"data:application/octet-stream;base64,AAAA", b"", b"file:///etc/passwd", b"a%zz.png",
+                b"seed.bin", b"nonexistent.png", b"C:\\\\x.png"]
+
+
+def gltf_text_mutation(text, rng):
+    """One structural mutation of glTF JSON text (as tests/fuzz/gltf_mutator.h does in the fuzz target)."""
+    kind = rng.randrange(7)
+    def sub(match, group, value):
+        return text[:match.start(group)] + value + text[match.end(group):]
+    if kind == 0:  # an index wrapped past the integers it may hold
+        found = list(re.finditer(rb'"(?:' + GLTF_INDEX_KEYS + rb')"\s*:\s*(\d+)', text)) or \
+            list(re.finditer(rb'"(?:nodes|children|joints)"\s*:\s*\[\s*(\d+)', text))
+        if found:
+            m = rng.choice(found)
+            n = int(m.group(1))
+            return sub(m, 1, str(rng.choice([n + 2 ** 32, n + 2 ** 31, -n - 1, n + 2 ** 33])).encode())
+    values = list(re.finditer(rb':\s*(-?[0-9][0-9.eE+-]*|true|false|null|"[^"]*")', text))
+    if kind == 1 and values:
+        return sub(rng.choice(values), 1, rng.choice(GLTF_NUMBERS))
+    if kind == 2 and values:
+        depth = rng.choice([63, 64, 65, 300, 5000, 30000])
+        nest = b'{"a":' * depth + b"0" + b"}" * depth if rng.random() < 0.5 else b"[" * depth + b"0" + b"]" * depth
+        return sub(rng.choice(values), 1, nest)
+    if kind == 3 and values:
+        return sub(rng.choice(values), 1, rng.choice(GLTF_KINDS))
+    if kind == 4:
+        found = list(re.finditer(rb'"uri"\s*:\s*"([^"]*)"', text)) or list(re.finditer(rb'"name"\s*:\s*"([^"]*)"', text))
+        if found:
+            return sub(rng.choice(found), 1, rng.choice(GLTF_STRINGS))
+    if kind == 5:  # an array of indices repeated or grown
+        found = list(re.finditer(rb'\[(\s*\d+)', text))
+        if found:
+            m = rng.choice(found)
+            return text[:m.end(1)] + (b"," + m.group(1).strip()) * rng.choice([1, 10, 1000]) + text[m.end(1):]
+    # Otherwise a whole object or array of the document duplicated or dropped (json_mutation's kinds).
+    return json_mutation(text, rng)
+
+
+def gltf_mutation(data, rng):
+    if data[:4] == b"glTF" and len(data) >= 20 and data[16:20] == b"JSON":
+        length = min(struct.unpack_from("<I", data, 12)[0], len(data) - 20)
+        text = gltf_text_mutation(data[20:20 + length], rng)
+        text += b" " * (-len(text) % 4)
+        rest = data[20 + length:]
+        out = bytearray(data[:20]) + text + rest
+        struct.pack_into("<II", out, 8, len(out), len(text))
+        return bytes(out)
+    return gltf_text_mutation(data, rng)
+
+
+def gltf_seeds():
+    corpus = os.path.join(ROOT, "tests", "fuzz", "corpus", "gltf_import")
+    out = {".gltf": [], ".glb": []}
+    for name in sorted(os.listdir(corpus)):
+        ext = os.path.splitext(name)[1]
+        if ext in out:
+            with open(os.path.join(corpus, name), "rb") as f:
+                out[ext].append(f.read())
+    return out
+
+
 # ---------------------------------------------------------------------------------------------
 # Formats: name -> (extension, seeds, format-aware mutation, command builder)
 
@@ -568,6 +638,14 @@ def build_formats(work, rng_seed):
         "scene": (".json", [seed_scene("seed.obj"), seed_scene("seed.ply")], json_mutation),
         "library": (".json", [seed_library()], json_mutation),
     }
+    # glTF and GLB (issue 34), from the glTF fuzz target's seeds, drawn by `render --mesh` and
+    # read by `library import-gltf`.
+    gltf = gltf_seeds()
+    seeds["gltf"] = (".gltf", gltf[".gltf"], gltf_mutation)
+    seeds["glb"] = (".glb", gltf[".glb"], gltf_mutation)
+    # The library imports materials: its seeds are the files that have some.
+    seeds["gltf-library"] = (".gltf", [d for d in gltf[".gltf"] if b'"materials"' in d], gltf_mutation)
+    seeds["glb-library"] = (".glb", [d for d in gltf[".glb"] if b'"materials"' in d], gltf_mutation)
     # The real OBJ assets too (kept for a minority of OBJ cases: they take longer to render).
     assets = os.path.join(ROOT, "tests", "assets", "meshes")
     for name in sorted(os.listdir(assets)):
@@ -599,6 +677,8 @@ def make_case(fmt, seeds, mutate, rng):
 def command(mipgloss, fmt, case, out_png):
     if fmt == "library":
         return [mipgloss, "library", "list", case]
+    if fmt.endswith("-library"):
+        return [mipgloss, "library", "import-gltf", case + ".mglib", case]
     size = ["--size", "32x32", "--env-size", "16", "--quiet"]
     if fmt == "scene":
         return [mipgloss, "render", case, "--out", out_png] + size

@@ -1096,6 +1096,32 @@ TEST(GltfHostile, IndicesThatAreNotWholeNumbersInRangeAreRefusedByTheirPath) {
     EXPECT_EQ(loadGltfFromMemory(bytesOf(extras), "ok.gltf").parts.size(), 1u);
 }
 
+// Found by the outside sweep's structural mutations (scripts/fuzz-meshes.py, gltf formats): a
+// member of the wrong kind or an enumeration outside glTF's list was read as its default without
+// a word (a primitive's "indices": {} drew it unindexed, "mode": [null] as triangles). Each is
+// refused by its path; the author's extras stay free.
+TEST(GltfHostile, MembersOfTheWrongKindOrOutsideTheirEnumerationAreRefusedByTheirPath) {
+    const std::string quad = quadJson();
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"componentType\": 5126", "\"componentType\": 5127")), "bad/ct.gltf"),
+                    "accessors[0].componentType is not one of glTF's values (5120, 5121, 5122, 5123, 5125, 5126)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"name\": 4294967296")), "bad/name.gltf"),
+                    "nodes[0].name is not a string");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"material\": 0", "\"material\": 0, \"mode\": [null]")), "bad/mode.gltf"),
+                    "meshes[0].primitives[0].mode is not a number (glTF's values: 0, 1, 2, 3, 4, 5, 6)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"material\": 0", "\"material\": 0, \"mode\": 7")), "bad/mode7.gltf"),
+                    "meshes[0].primitives[0].mode is not one of glTF's values");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"material\": 0", "\"material\": 0, \"indices\": {\"a\": 1}")), "bad/indices.gltf"),
+                    "meshes[0].primitives[0].indices is not a number");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"byteLength\": ", "\"target\": 2147483648, \"byteLength\": ")), "bad/target.gltf"),
+                    "bufferViews[0].target is not one of glTF's values (34962, 34963)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"version\": \"2.0\"", "\"version\": \"2.0\", \"generator\": true")), "bad/gen.gltf"),
+                    "asset.generator is not a string");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"scale\": {\"x\": 1}")), "bad/scale.gltf"),
+                    "nodes[0].scale must be numbers");
+    const std::string extras = replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"extras\": {\"name\": 7, \"mode\": [null], \"target\": {}}");
+    EXPECT_EQ(loadGltfFromMemory(bytesOf(extras), "ok.gltf").parts.size(), 1u);
+}
+
 // glTF's schema: at least one byte, at least one element.
 TEST(GltfHostile, AnEmptyBufferOrAccessorIsRefusedByItsPath) {
     const std::string quad = quadJson();

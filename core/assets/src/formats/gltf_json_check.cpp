@@ -1,5 +1,6 @@
 #include "gltf_json_check.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -33,6 +34,37 @@ bool isNumberArray(std::string_view key) {
     return false;
 }
 
+// Members whose value is a string (glTF 2.0's schema), a number, or true/false.
+bool isStringKey(std::string_view key) {
+    for (const char* k : {"name", "uri", "mimeType", "generator", "version", "minVersion", "copyright", "alphaMode",
+                          "interpolation", "path", "type"})
+        if (key == k) return true;
+    return false;
+}
+bool isNumberKey(std::string_view key) {
+    for (const char* k : {"metallicFactor", "roughnessFactor", "alphaCutoff", "strength", "yfov", "znear", "zfar",
+                          "aspectRatio", "xmag", "ymag", "emissiveStrength", "ior", "specularFactor", "clearcoatFactor",
+                          "clearcoatRoughnessFactor"})
+        if (key == k) return true;
+    return false;
+}
+bool isBooleanKey(std::string_view key) { return key == "normalized" || key == "doubleSided"; }
+
+// The enumerations glTF 2.0 gives as whole numbers, by member and the array its object is in
+// ("" when none lists them): the values allowed.
+const std::vector<double>* enumerationOf(std::string_view member, std::string_view array) {
+    static const std::vector<double> modes{0, 1, 2, 3, 4, 5, 6}, targets{34962, 34963},
+        componentTypes{5120, 5121, 5122, 5123, 5125, 5126}, magFilters{9728, 9729},
+        minFilters{9728, 9729, 9984, 9985, 9986, 9987}, wraps{33071, 33648, 10497};
+    if (member == "mode" && array == "primitives") return &modes;
+    if (member == "target" && array == "bufferViews") return &targets;
+    if (member == "componentType") return &componentTypes;
+    if (member == "magFilter") return &magFilters;
+    if (member == "minFilter") return &minFilters;
+    if (member == "wrapS" || member == "wrapT") return &wraps;
+    return nullptr;
+}
+
 constexpr double kLargestIndex = 2147483647.0;        // glTF's indices are int32 in every reader we know
 constexpr double kLargestSize = 9007199254740992.0;   // 2^53: JSON's exact integers
 
@@ -46,7 +78,7 @@ struct Frame {
     std::string member;       // object: the current member's key
 };
 
-enum class Kind { Number, String, Literal, Container };
+enum class Kind { Number, String, Literal, Object, Array };
 
 struct Syntax {
     std::string text;
@@ -183,8 +215,23 @@ private:
                 if ((parent.member == "byteLength" || parent.member == "count") && value < 1.0)
                     refuse("is 0: a " + std::string(parent.member == "count" ? "count" : "byteLength") + " is at least 1");
             }
-            else if (isNumberArray(parent.member) && kind != Kind::Container && kind != Kind::Number)
+            else if (isNumberArray(parent.member) && kind != Kind::Array && kind != Kind::Number)
                 refuse("must be numbers");
+            else if (const std::vector<double>* allowed = enumerationOf(parent.member, parent.key)) {
+                // A value outside glTF's list (a wrapped target, a mode of 3.0e9) is not a hint to
+                // ignore: tinygltf would read it, or its default, without a word.
+                if (kind != Kind::Number || std::find(allowed->begin(), allowed->end(), value) == allowed->end()) {
+                    std::string list;
+                    for (double v : *allowed) list += (list.empty() ? "" : ", ") + std::to_string(static_cast<int>(v));
+                    refuse(std::string(kind == Kind::Number ? "is not one of glTF's values (" : "is not a number (glTF's values: ") +
+                           list + ")");
+                }
+            } else if (isStringKey(parent.member) && kind != Kind::String)
+                refuse("is not a string");
+            else if (isNumberKey(parent.member) && kind != Kind::Number)
+                refuse("is not a number");
+            else if (isBooleanKey(parent.member) && kind != Kind::Literal)
+                refuse("is not true or false");
         } else if (parent.depth >= 3 && isIndexArray(parent.key)) {
             whole(kLargestIndex, "an index");
         } else if (isNumberArray(parent.key) && kind != Kind::Number) {
@@ -237,9 +284,10 @@ private:
         if (stack_.empty() && c != '{') syntax("the file is not a JSON object");
         if (c == '{' || c == '[') {
             // A sparse accessor's "indices" is an object of its own (the reader refuses sparse
-            // accessors by name later).
-            if (!(c == '{' && !stack_.empty() && stack_.back().object && stack_.back().member == "indices"))
-                check(Kind::Container, 0.0);
+            // accessors by name later); a primitive's is an index like any other.
+            if (!(c == '{' && !stack_.empty() && stack_.back().object && stack_.back().member == "indices" &&
+                  stack_.back().key == "sparse"))
+                check(c == '{' ? Kind::Object : Kind::Array, 0.0);
             ++i_;
             open(c == '{');
             return;
