@@ -186,6 +186,15 @@ int importGltf(Args args) {
     if (ec) throw ui::LibraryFileError(file, "cannot read: " + ec.message());
     MaterialLibrary library = exists ? load(file) : MaterialLibrary{};
     std::vector<std::string> added;
+    // A map whose image file is not there is kept (the library names the file; it draws once the
+    // file is put back) but said now, naming the material and the file, rather than found later.
+    std::vector<std::string> missing;
+    for (const AssetMaterial& m : asset.materials)
+        for (const TextureRef& ref : m.material.layers.maps.textures())
+            if (ref.image < 0 && !ref.empty() && !fs::is_regular_file(ref.file, ec))
+                missing.push_back(assetPath.string() + ": material \"" + m.name + "\" reads " + ref.file +
+                                  ", which is not there (kept: its maps draw without it until the file is)");
+    printWarnings(missing);
     for (const AssetMaterial& m : asset.materials) {
         LibraryMaterial entry = libraryEntryOf(m);
         const std::string name = entry.name = library.uniqueName(entry.name);

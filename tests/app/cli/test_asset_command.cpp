@@ -161,6 +161,24 @@ TEST(AssetCommand, ImportGltfLandsTheMaterialsInALibraryByName) {
     EXPECT_NE(r.out.find("metallic 1\troughness 0.35"), std::string::npos) << r.out;
 }
 
+// A material whose map names an image file that is not there is imported (the library keeps the
+// reference: it draws once the file is back), with a warning naming the asset, the material and
+// the file, rather than nothing until the library is opened.
+TEST(AssetCommand, ImportGltfSaysWhichMaterialsReadAnImageThatIsNotThere) {
+    test::TempDir dir;
+    test::GltfWriter w;
+    const int base = w.addTexture(w.addImage(test::encodePng(checker()), "gone.png"));
+    w.addToScene(w.addNode(w.addMesh(test::texturedQuad(), w.addMaterial(test::pbrMaterial("Painted", {1, 1, 1, 1}, 0.0, 0.5, base)))));
+    w.writeGltf(dir / "painted.gltf");
+    fs::remove(dir / "gone.png");
+    const CliResult r = runCli({"library", "import-gltf", q(dir / "lib.mglib"), q(dir / "painted.gltf")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find((dir / "painted.gltf").string() + ": material \"Painted\" reads " + (dir / "gone.png").string() +
+                         ", which is not there"),
+              std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("added \"Painted\", textured"), std::string::npos) << r.out;
+}
+
 TEST(AssetCommand, HostileGltfIsRefusedNamingTheFileAndTheElement) {
     test::TempDir dir;
     test::GltfWriter w;

@@ -1179,6 +1179,13 @@ TEST(GltfHostile, FilesOutsideTheAssetsFolderAreNotReadAndANulIsRefused) {
     std::string nul = quad;
     nul.replace(uri, end + 1 - uri, "\"uri\": \"model.bin%00.png\"");
     EXPECT_CONTAINS(refusal(bytesOf(nul), "bad/nul.gltf"), "buffers[0].uri holds an encoded NUL");
+    // A '%' that is not an escape (RFC 3986) is no file name either: it would be read as itself by
+    // one reader and refused by another.
+    for (const std::string bad : {"a%zz.bin", "a%4.bin", "model.bin%"}) {
+        std::string text = quad;
+        text.replace(uri, end + 1 - uri, "\"uri\": \"" + bad + "\"");
+        EXPECT_CONTAINS(refusal(bytesOf(text), "bad/percent.gltf"), "buffers[0].uri holds a '%' that is not an escape");
+    }
 }
 
 // tinygltf keeps a copy of an external file per reference (12 000 images naming one 365 KB file

@@ -248,6 +248,10 @@ private:
         const std::string& array = stack_.back().key;
         if (array != "buffers" && array != "images") return;
         if (text.rfind("data:", 0) == 0) return;
+        for (std::size_t i = 0; i < text.size(); ++i)
+            if (text[i] == '%' && !(i + 2 < text.size() && std::isxdigit(static_cast<unsigned char>(text[i + 1])) &&
+                                    std::isxdigit(static_cast<unsigned char>(text[i + 2]))))
+                refuse("holds a '%' that is not an escape (RFC 3986: '%' and two hexadecimal digits; a file name's '%' is written %25)");
         const std::string decoded = decodeUri(text);
         if (decoded.find('\0') != std::string::npos) refuse("holds an encoded NUL (%00): not a file name");
         if (array == "images" && imageUris_) {
