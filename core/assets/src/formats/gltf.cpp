@@ -30,6 +30,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -58,6 +59,13 @@ constexpr int kMaxNodeDepth = 256;
 // is ~1.6 GB of mesh, more than any asset an artist previews.
 constexpr std::size_t kMaxAssetVertices = std::size_t(1) << 25;
 constexpr std::size_t kMaxAssetTriangles = std::size_t(1) << 25;
+// What placements may add beyond the file's own geometry (each mesh's vertices and triangles
+// counted once): a file's data is bounded by its size, so this is what bounds a small file's
+// memory. A 710 KB glTF placing one 20 000-vertex mesh 1 600 times asked for 32 million vertices
+// and peaked at 3.2 GB drawing them (issue 34). At 2^23 past the file's own, positions alone
+// peaked at 1.46 GB drawn; 2^22 leaves room for every attribute (normals, two UV sets, tangents,
+// colours) under 2 GB and still lets a thousand bolts or a hundred chairs repeat.
+constexpr std::size_t kMaxPlacedBeyondTheFile = std::size_t(1) << 22;
 
 bool isImageFile(const std::string& path) {
     const std::string ext = meshfile::lowerExtension(path);
@@ -770,6 +778,13 @@ public:
                 fail(at + " (placed by " + nodeAt + ")",
                      "the asset would hold more than " + std::to_string(kMaxAssetTriangles) + " triangles or " +
                          std::to_string(kMaxAssetVertices) + " vertices (a mesh placed by very many nodes?)");
+            const auto [ownVertices, ownTriangles] = ownGeometry();
+            if (totalVertices_ > ownVertices + kMaxPlacedBeyondTheFile || totalTriangles_ > ownTriangles + kMaxPlacedBeyondTheFile)
+                fail(at + " (placed by " + nodeAt + ")",
+                     "its nodes place the file's " + std::to_string(ownVertices) + " vertices and " +
+                         std::to_string(ownTriangles) + " triangles so often that the asset would hold more than " +
+                         std::to_string(kMaxPlacedBeyondTheFile) + " beyond them (" + std::to_string(totalVertices_) +
+                         " vertices and " + std::to_string(totalTriangles_) + " triangles so far); mipgloss copies each placement");
             const auto positions = readFloats<3>(positionAccessor, at + " POSITION");
             const std::size_t n = positions.size();
             auto sameCount = [&](std::size_t count, const char* what) {
@@ -978,6 +993,31 @@ private:
     fs::path file_;
     Asset asset_;
     std::size_t totalVertices_ = 0, totalTriangles_ = 0;
+    std::optional<std::pair<std::size_t, std::size_t>> ownGeometry_;
+
+    // The file's own vertices and triangles: every mesh's primitives once, an accessor shared by
+    // primitives once (what the file's bytes hold, however often nodes place it).
+    std::pair<std::size_t, std::size_t> ownGeometry() {
+        if (!ownGeometry_) {
+            std::set<int> positions, indices;
+            std::size_t vertices = 0, triangles = 0;
+            auto countOf = [&](int accessor) -> std::size_t {
+                return accessor >= 0 && static_cast<std::size_t>(accessor) < model_.accessors.size()
+                           ? model_.accessors[static_cast<std::size_t>(accessor)].count
+                           : 0;
+            };
+            for (const tinygltf::Mesh& m : model_.meshes)
+                for (const tinygltf::Primitive& prim : m.primitives) {
+                    const auto it = prim.attributes.find("POSITION");
+                    const int position = it == prim.attributes.end() ? -1 : it->second;
+                    if (positions.insert(position).second) vertices += countOf(position);
+                    if (prim.indices >= 0 ? indices.insert(prim.indices).second : true)
+                        triangles += (prim.indices >= 0 ? countOf(prim.indices) : countOf(position)) / 3 + 1;
+                }
+            ownGeometry_ = {vertices, triangles};
+        }
+        return *ownGeometry_;
+    }
     std::map<int, int> firstImageOfView_;  // a buffer view's first image (texture())
     std::vector<bool> onPath_;          // the nodes from the root to the one visited
     std::vector<unsigned char> reached_;  // 0 not yet, 1 reached, 2 reached again (warned)
