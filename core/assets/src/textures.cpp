@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <set>
 
 namespace mipgloss {
@@ -83,16 +84,22 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs,
     // maxSize, halved for the largest images until the planned total fits, so a file whose headers
     // promise more than the budget is decoded downsized (as its rows are read: texture.h), never
     // at full size first. An image whose header cannot be read is left to its decoding to refuse.
-    std::vector<TextureSize> planned(todo.size());
+    std::vector<TextureSize> header(todo.size()), planned(todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
         if (!unread[i].empty()) return;
         try {
-            planned[i] = fittedTextureSize(encoded[i] ? textureSizeFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType)
-                                                      : textureSize(todo[i].file),
-                                           maxSize_);
+            header[i] = encoded[i] ? textureSizeFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType)
+                                   : textureSize(todo[i].file);
+            planned[i] = fittedTextureSize(header[i], maxSize_);
         } catch (const std::exception&) {
         }
     });
+    // Some decoders hold the whole image whatever is asked of them (WebP, interlaced PNG, a
+    // progressive JPEG's coefficients): up to 1 GiB for a texture of kMaxTexturePixels. One such
+    // large image is decoded at a time, so the peak is one of them, not one per core (three
+    // 10 KB WebP files of 16383², `render --mesh` on 2 cores: 2.18 GB peak, 6.2 s → 1.33 GB, 8.5 s).
+    std::mutex oneLargeDecode;
+    constexpr std::size_t kLargeDecodeBytes = std::size_t(64) << 20;
     std::vector<int> sideLimit(todo.size(), maxSize_);
     {
         std::size_t total = bytes();
@@ -116,9 +123,12 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs,
         }
         try {
             const int side = sideLimit[i];
+            std::unique_lock<std::mutex> large(oneLargeDecode, std::defer_lock);
+            if (header[i].rgbaBytes() > kLargeDecodeBytes) large.lock();
             results[i].image = std::make_shared<TextureImage>(
                 encoded[i] ? decodeTextureFromMemory(encoded[i]->bytes, todo[i].key(), encoded[i]->mimeType, side)
                            : decodeTexture(todo[i].file, side));
+            if (large.owns_lock()) large.unlock();
             TextureImage& image = *results[i].image;
             // Downsized for the budget, not for maxSize: its one downsizing warning says so.
             if (side < maxSize_ && (image.width != image.fileWidth || image.height != image.fileHeight))
