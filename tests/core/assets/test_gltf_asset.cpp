@@ -1118,6 +1118,11 @@ TEST(GltfHostile, MembersOfTheWrongKindOrOutsideTheirEnumerationAreRefusedByThei
                     "asset.generator is not a string");
     EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"scale\": {\"x\": 1}")), "bad/scale.gltf"),
                     "nodes[0].scale must be numbers");
+    // String enumerations: an alphaMode of "FOO" was drawn opaque without a word.
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"type\": \"VEC3\"", "\"type\": \"VEC5\"")), "bad/type.gltf"),
+                    "accessors[0].type is \"VEC5\", not one of glTF's values (SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3, MAT4)");
+    EXPECT_CONTAINS(refusal(bytesOf(replaced(quad, "\"pbrMetallicRoughness\"", "\"alphaMode\": \"FOO\", \"pbrMetallicRoughness\"")), "bad/alpha.gltf"),
+                    "materials[0].alphaMode is \"FOO\", not one of glTF's values (OPAQUE, MASK, BLEND)");
     const std::string extras = replaced(quad, "\"mesh\": 0", "\"mesh\": 0, \"extras\": {\"name\": 7, \"mode\": [null], \"target\": {}}");
     EXPECT_EQ(loadGltfFromMemory(bytesOf(extras), "ok.gltf").parts.size(), 1u);
 }

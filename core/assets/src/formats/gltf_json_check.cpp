@@ -65,6 +65,19 @@ const std::vector<double>* enumerationOf(std::string_view member, std::string_vi
     return nullptr;
 }
 
+// The enumerations glTF 2.0 gives as strings, likewise (an image's mimeType: the core's two and
+// the two its texture extensions add).
+const std::vector<std::string_view>* wordsOf(std::string_view member, std::string_view array) {
+    static const std::vector<std::string_view> alphaModes{"OPAQUE", "MASK", "BLEND"},
+        accessorTypes{"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"},
+        cameraTypes{"perspective", "orthographic"}, mimeTypes{"image/jpeg", "image/png", "image/webp", "image/ktx2"};
+    if (member == "alphaMode" && array == "materials") return &alphaModes;
+    if (member == "type" && array == "accessors") return &accessorTypes;
+    if (member == "type" && array == "cameras") return &cameraTypes;
+    if (member == "mimeType" && array == "images") return &mimeTypes;
+    return nullptr;
+}
+
 constexpr double kLargestIndex = 2147483647.0;        // glTF's indices are int32 in every reader we know
 constexpr double kLargestSize = 9007199254740992.0;   // 2^53: JSON's exact integers
 
@@ -191,7 +204,7 @@ private:
     }
 
     // The rule for a value about to be read, from the member or array holding it.
-    void check(Kind kind, double value) {
+    void check(Kind kind, double value, std::string_view text = {}) {
         if (stack_.empty()) return;  // the top level: value() has seen it is an object
         const Frame& parent = stack_.back();
         if (parent.skip) return;
@@ -228,6 +241,12 @@ private:
                 }
             } else if (isStringKey(parent.member) && kind != Kind::String)
                 refuse("is not a string");
+            else if (const std::vector<std::string_view>* words = wordsOf(parent.member, parent.key);
+                     words && std::find(words->begin(), words->end(), text) == words->end()) {
+                std::string list;
+                for (std::string_view w : *words) list += (list.empty() ? "" : ", ") + std::string(w);
+                refuse("is \"" + std::string(text.substr(0, 40)) + "\", not one of glTF's values (" + list + ")");
+            }
             else if (isNumberKey(parent.member) && kind != Kind::Number)
                 refuse("is not a number");
             else if (isBooleanKey(parent.member) && kind != Kind::Literal)
@@ -298,8 +317,9 @@ private:
         }
         // A refusal names the value by its JSON path (path()), not its byte: no position to keep.
         if (c == '"') {
-            check(Kind::String, 0.0);
-            checkUri(string());
+            const std::string text = string();
+            check(Kind::String, 0.0, text);
+            checkUri(text);
             return;
         }
         if (c == '-' || std::isdigit(static_cast<unsigned char>(c))) {
