@@ -147,8 +147,8 @@ std::vector<std::string> TextureCache::load(const std::vector<TextureRef>& refs,
     for (const auto& [key, image] : images_) total += image->bytes();
     for (const Result& r : results)
         if (r.image) total += r.image->bytes();
-    // Over the budget still (a header that did not say the size it decoded to): halve the largest
-    // new image until the total fits.
+    // Over the budget still (another load() stored images between this one's plan and now: the
+    // plan read bytes() unlocked): halve the largest new image until the total fits.
     while (total > budgetBytes_) {
         Result* largest = nullptr;
         for (Result& r : results)

@@ -54,7 +54,8 @@ void halveOnce(const std::vector<std::uint8_t>& rgba, int w, int h, std::vector<
             }
 }
 
-// How many halvings bring w × h within maxSize on a side (downsizeTexture's loop, counted).
+// How many halvings bring w × h within maxSize on a side (downsizeTexture's loop, counted); k
+// halvings, each rounding up, give ⌈w / 2^k⌉ × ⌈h / 2^k⌉ (fittedTextureSize).
 int halvingsToFit(int w, int h, int maxSize) {
     int k = 0;
     while (w > maxSize || h > maxSize) {
@@ -107,8 +108,8 @@ TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSi
         // downsizeTexture's on the whole image, byte for byte; but the full-size image is never
         // held (a 16384² texture held 1 GiB of RGBA to keep 64 MiB).
         const int band = 1 << halvings;
-        const int outWidth = (spec.width + band - 1) / band, outHeight = (spec.height + band - 1) / band;
-        image.rgba.resize(static_cast<std::size_t>(outWidth) * static_cast<std::size_t>(outHeight) * 4);
+        const TextureSize out = fittedTextureSize({spec.width, spec.height}, maxSize);
+        image.rgba.resize(out.rgbaBytes());
         std::vector<std::uint8_t> strip, half;
         for (int row = 0, y0 = 0; y0 < spec.height; ++row, y0 += band) {
             const int rows = std::min(band, spec.height - y0);
@@ -125,10 +126,10 @@ TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSi
                 w = (w + 1) / 2;
                 h = (h + 1) / 2;
             }
-            std::copy(strip.begin(), strip.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(row) * outWidth * 4);
+            std::copy(strip.begin(), strip.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(row) * out.width * 4);
         }
-        image.width = outWidth;
-        image.height = outHeight;
+        image.width = out.width;
+        image.height = out.height;
     }
     if (image.width != image.fileWidth || image.height != image.fileHeight)
         image.warnings.push_back(name + ": texture of " + std::to_string(image.fileWidth) + " x " +
@@ -224,9 +225,7 @@ TextureSize sizeOf(OIIO::ImageInput& in, const std::string& name) {
 }  // namespace
 
 TextureImage decodeTexture(const std::filesystem::path& file, int maxSize) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) throw TextureError(file, kFileNotFound);
-    if (isJpegFile(file)) {
+    if (isJpegFile(file)) {  // (a missing file is not one: openFile refuses it below)
         // A JPEG is read once, into memory, where its end is checked and it is decoded.
         std::ifstream head(file, std::ios::binary);
         const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
@@ -252,12 +251,8 @@ TextureSize textureSizeFromMemory(std::span<const unsigned char> bytes, const st
 }
 
 TextureSize fittedTextureSize(TextureSize size, int maxSize) {
-    maxSize = std::max(maxSize, 1);
-    while (size.width > maxSize || size.height > maxSize) {
-        size.width = (size.width + 1) / 2;
-        size.height = (size.height + 1) / 2;
-    }
-    return size;
+    const long long band = 1LL << halvingsToFit(size.width, size.height, std::max(maxSize, 1));  // ≤ 2^31
+    return {static_cast<int>((size.width + band - 1) / band), static_cast<int>((size.height + band - 1) / band)};
 }
 
 }  // namespace mipgloss

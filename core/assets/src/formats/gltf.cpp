@@ -766,11 +766,6 @@ public:
             const int positionAccessor = attribute("POSITION");
             if (positionAccessor < 0) fail(at, "has no POSITION attribute");
             // What the primitive will add, from its accessors' counts, before any is read.
-            auto countOf = [&](int accessor) -> std::size_t {
-                return accessor >= 0 && static_cast<std::size_t>(accessor) < model_.accessors.size()
-                           ? model_.accessors[static_cast<std::size_t>(accessor)].count
-                           : 0;
-            };
             const std::size_t vertexCount = countOf(positionAccessor);
             totalVertices_ += vertexCount;
             totalTriangles_ += (prim.indices >= 0 ? countOf(prim.indices) : vertexCount) / 3 + 1;
@@ -995,17 +990,20 @@ private:
     std::size_t totalVertices_ = 0, totalTriangles_ = 0;
     std::optional<std::pair<std::size_t, std::size_t>> ownGeometry_;
 
+    // An accessor's element count as the file gives it (0 for none or one out of range), read
+    // before any of its data.
+    std::size_t countOf(int accessor) const {
+        return accessor >= 0 && static_cast<std::size_t>(accessor) < model_.accessors.size()
+                   ? model_.accessors[static_cast<std::size_t>(accessor)].count
+                   : 0;
+    }
+
     // The file's own vertices and triangles: every mesh's primitives once, an accessor shared by
     // primitives once (what the file's bytes hold, however often nodes place it).
     std::pair<std::size_t, std::size_t> ownGeometry() {
         if (!ownGeometry_) {
             std::set<int> positions, indices;
             std::size_t vertices = 0, triangles = 0;
-            auto countOf = [&](int accessor) -> std::size_t {
-                return accessor >= 0 && static_cast<std::size_t>(accessor) < model_.accessors.size()
-                           ? model_.accessors[static_cast<std::size_t>(accessor)].count
-                           : 0;
-            };
             for (const tinygltf::Mesh& m : model_.meshes)
                 for (const tinygltf::Primitive& prim : m.primitives) {
                     const auto it = prim.attributes.find("POSITION");
