@@ -78,6 +78,20 @@ const std::vector<std::string_view>* wordsOf(std::string_view member, std::strin
     return nullptr;
 }
 
+// "a, b, c": an enumeration's values for a message.
+template <class Values, class Show>
+std::string joined(const Values& values, Show show) {
+    std::string out;
+    for (const auto& v : values) out += (out.empty() ? "" : ", ") + show(v);
+    return out;
+}
+
+// Whether uri[i] starts a %XX escape (RFC 3986: '%' and two hexadecimal digits).
+bool escapeAt(std::string_view uri, std::size_t i) {
+    auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+    return uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) && hex(uri[i + 2]);
+}
+
 constexpr double kLargestIndex = 2147483647.0;        // glTF's indices are int32 in every reader we know
 constexpr double kLargestSize = 9007199254740992.0;   // 2^53: JSON's exact integers
 
@@ -233,20 +247,15 @@ private:
             else if (const std::vector<double>* allowed = enumerationOf(parent.member, parent.key)) {
                 // A value outside glTF's list (a wrapped target, a mode of 3.0e9) is not a hint to
                 // ignore: tinygltf would read it, or its default, without a word.
-                if (kind != Kind::Number || std::find(allowed->begin(), allowed->end(), value) == allowed->end()) {
-                    std::string list;
-                    for (double v : *allowed) list += (list.empty() ? "" : ", ") + std::to_string(static_cast<int>(v));
+                if (kind != Kind::Number || std::find(allowed->begin(), allowed->end(), value) == allowed->end())
                     refuse(std::string(kind == Kind::Number ? "is not one of glTF's values (" : "is not a number (glTF's values: ") +
-                           list + ")");
-                }
+                           joined(*allowed, [](double v) { return std::to_string(static_cast<int>(v)); }) + ")");
             } else if (isStringKey(parent.member) && kind != Kind::String)
                 refuse("is not a string");
             else if (const std::vector<std::string_view>* words = wordsOf(parent.member, parent.key);
-                     words && std::find(words->begin(), words->end(), text) == words->end()) {
-                std::string list;
-                for (std::string_view w : *words) list += (list.empty() ? "" : ", ") + std::string(w);
-                refuse("is \"" + std::string(text.substr(0, 40)) + "\", not one of glTF's values (" + list + ")");
-            }
+                     words && std::find(words->begin(), words->end(), text) == words->end())
+                refuse("is \"" + std::string(text.substr(0, 40)) + "\", not one of glTF's values (" +
+                       joined(*words, [](std::string_view w) { return std::string(w); }) + ")");
             else if (isNumberKey(parent.member) && kind != Kind::Number)
                 refuse("is not a number");
             else if (isBooleanKey(parent.member) && kind != Kind::Literal)
@@ -268,8 +277,7 @@ private:
         if (array != "buffers" && array != "images") return;
         if (text.rfind("data:", 0) == 0) return;
         for (std::size_t i = 0; i < text.size(); ++i)
-            if (text[i] == '%' && !(i + 2 < text.size() && std::isxdigit(static_cast<unsigned char>(text[i + 1])) &&
-                                    std::isxdigit(static_cast<unsigned char>(text[i + 2]))))
+            if (text[i] == '%' && !escapeAt(text, i))
                 refuse("holds a '%' that is not an escape (RFC 3986: '%' and two hexadecimal digits; a file name's '%' is written %25)");
         const std::string decoded = decodeUri(text);
         if (decoded.find('\0') != std::string::npos) refuse("holds an encoded NUL (%00): not a file name");
@@ -381,10 +389,9 @@ private:
 }  // namespace
 
 std::string decodeUri(std::string_view uri) {
-    auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
     std::string out;
     for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) && hex(uri[i + 2])) {
+        if (escapeAt(uri, i)) {
             out += static_cast<char>(std::stoi(std::string(uri.substr(i + 1, 2)), nullptr, 16));
             i += 2;
         } else {
