@@ -12,6 +12,7 @@
 #include "mipgloss/assets/default_scene.h"
 #include "mipgloss/assets/mesh_files.h"
 #include "mipgloss/assets/textures.h"
+#include "mipgloss/scene/lobes.h"
 #include "mipgloss/scene/chain_needs.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/framing.h"
@@ -123,6 +124,7 @@ BenchRenderOptions parseBenchRenderOptions(Args args) {
         else if (a == "--objects") o.objects = static_cast<int>(parseFloat(a, value(), 1, 4096));
         else if (a == "--frames") o.frames = static_cast<int>(parseFloat(a, value(), 1, 100000));
         else if (a == "--size") parseSize(a, value(), o.width, o.height);
+        else if (a == "--no-stack") o.stack = false;
         else throw UsageError("unknown option '" + a + "'");
     }
     return o;
@@ -153,9 +155,12 @@ int runRenderBench(Args args, const char* argv0) {
         scene.addObject(std::move(o), Material{});
     }
     auto environment = std::make_shared<const PreparedEnvironment>(
-        prepareEnvironment(scene.environment, ChainNeeds{7, false}));
+        prepareEnvironment(scene.environment, ChainNeeds{7, false, 1.0}));
     const OrbitCamera camera = framingCamera(scene, static_cast<float>(width) / static_cast<float>(height));
+    // Each case times the settled picture: the lobe stack's entries its lobes read, made before
+    // the clock starts, as the window's worker makes them (render_command.cpp does the same).
     auto timeFrames = [&](Scene& s) {
+        renderer.setLobes(options.stack ? makeStackEntries(*environment, s) : std::vector<std::shared_ptr<const LobeStackEntry>>{});
         renderer.render(s, camera, environment, width, height);  // warm-up: uploads, samplers
         renderer.finish();
         const auto start = std::chrono::steady_clock::now();
@@ -167,7 +172,10 @@ int runRenderBench(Args args, const char* argv0) {
     };
     std::cout << "renderer: " << renderer.glDescription() << "\n"
               << objects << " teapots (" << objects * teapot->triangleCount() << " triangles), "
-              << width << "x" << height << ", " << frames << " frames each, glFinish per frame\n";
+              << width << "x" << height << ", " << frames << " frames each, glFinish per frame, "
+              << (options.stack ? "the settled picture (lobe stack made)" : "every lobe from the chain (--no-stack)") << "\n"
+              << "environment: the embedded default, face " << environment->base->size() << ", "
+              << environment->lights.size() << " bright lights\n";
     // Three cases, interleaved three times, medians kept (the VM's timing noise is large):
     //   shared   every object λ = 3 (one sampler)
     //   distinct λ = 3 + i/512: one sampler per object, the same levels sampled, so the
@@ -177,19 +185,22 @@ int runRenderBench(Args args, const char* argv0) {
         for (int i = 0; i < objects; ++i)
             scene.materialOf(scene.objects[static_cast<std::size_t>(i)]).lambda = lambdaOf(i);
     };
-    // And the layered material (layered.h) at the same scene: a plastic (diffuse + specular, two
-    // lookups) and a coated paint (three), every object the same material, λ of the specular 3.
-    auto setLayered = [&](bool on, float coat) {
+    // And the layered material (layered.h) at the same scene: a plastic (diffuse + specular) and a
+    // coated paint, every object the same material, the specular's roughness that of λ 3 (0.15: at
+    // face 128 a near-mirror layer, whose sharpest lookups read the chain); and a rough plastic
+    // (0.5), whose lookups the stack holds (lobes.h, ggxLookupsHeld).
+    const float lambda3Roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(3.0)));
+    auto setLayered = [&](bool on, float coat, float roughness) {
         for (int i = 0; i < objects; ++i) {
             Material& m = scene.materialOf(scene.objects[static_cast<std::size_t>(i)]);
             m.layered = on;
             m.layers.baseColor = Rgb(0.7f, 0.1f, 0.05f);
-            m.layers.roughness = static_cast<float>(exponentToRoughness(lambdaToExponent(3.0)));
+            m.layers.roughness = roughness;
             m.layers.coat = coat;
             m.layers.coatRoughness = 0.2f;
         }
     };
-    std::vector<double> shared, distinct, spread, plastic, coated;
+    std::vector<double> shared, distinct, spread, plastic, coated, rough;
     for (int round = 0; round < 3; ++round) {
         setLambdas([](int) { return 3.0f; });
         shared.push_back(timeFrames(scene));
@@ -198,13 +209,15 @@ int runRenderBench(Args args, const char* argv0) {
         setLambdas([&](int i) { return 7.0f * static_cast<float>(i) / static_cast<float>(std::max(objects - 1, 1)); });
         spread.push_back(timeFrames(scene));
         setLambdas([](int) { return 3.0f; });
-        setLayered(true, 0.0f);
+        setLayered(true, 0.0f, lambda3Roughness);
         plastic.push_back(timeFrames(scene));
-        setLayered(true, 1.0f);
+        setLayered(true, 1.0f, lambda3Roughness);
         coated.push_back(timeFrames(scene));
-        setLayered(false, 0.0f);
+        setLayered(true, 0.0f, 0.5f);
+        rough.push_back(timeFrames(scene));
+        setLayered(false, 0.0f, lambda3Roughness);
     }
-    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated}) std::sort(v->begin(), v->end());
+    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated, &rough}) std::sort(v->begin(), v->end());
     std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
               << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
               << distinct[1] / shared[1] << "\n"
@@ -214,6 +227,7 @@ int runRenderBench(Args args, const char* argv0) {
               << "\n"
               << "layered, + clear coat:          " << coated[1] << " ms/frame  ratio " << coated[1] / shared[1]
               << "\n"
+              << "layered, rough (r 0.5):         " << rough[1] << " ms/frame  ratio " << rough[1] / shared[1] << "\n"
               << "samplers created: " << renderer.counters().samplersCreated << "\n";
     return 0;
 }

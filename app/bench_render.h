@@ -14,6 +14,9 @@ struct BenchRenderOptions {
     int objects = 16, frames = 20, width = 960, height = 540;
     std::optional<std::filesystem::path> mesh;
     bool million = false;  // a generated sphere of a million triangles instead of --mesh
+    // Off: every lobe read from the chain, the picture before the lobe stack's entries exist (the
+    // frames this bench timed before it made them); on, the settled picture the window shows.
+    bool stack = true;
 };
 
 // Pure: the flags into the options, or a UsageError naming the flag.

@@ -158,7 +158,7 @@ int runTruthBench(Args args) {
             EnvironmentSettings settings;
             settings.source = file;
             settings.faceSize = static_cast<int>(faceSize);
-            const auto env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
+            const auto env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true, 1.0}));
             const RadianceTree tree(*env->base);
             {
                 double widest = 0.0, energy = 0.0, total = 0.0;

@@ -167,6 +167,9 @@ std::vector<std::shared_ptr<const LobeStackEntry>> lobeStackFor(const PreparedEn
         indices.insert(indices.end(), ahead.begin(), ahead.end());
     }
     for (int index : indices) lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
+    if (environment.remainderFilter)
+        for (int index : remainderEntries(scene, baseSize, environment.lights))
+            lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index, true)));
     return lobes;
 }
 

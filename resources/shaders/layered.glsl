@@ -13,6 +13,17 @@ uniform float uCoatRoughness;
 uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
 uniform ivec2 uSpecularEntries;  // the stack entries each layer's lookups read, first and last
 uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStack/uUseCoatStack)
+// The same entries made from the smooth remainder (lobes.h, remainderEntries; bright_lights.h,
+// withoutBrightLights), in the stack's atlas: x, y, face size, scale (lobe_stack.glsl, atlasRead).
+// When a held layer's are all there (uSpecularRemainder, uCoatRemainder) its lookups read them
+// and subtract no light; else they read the whole environment and subtract the lights from each.
+uniform vec4 uRemainderEntry[STACK_SLOTS];
+uniform bool uSpecularRemainder;
+uniform bool uCoatRemainder;
+// Whether the stack holds every lookup's lobe of each layer (lobes.h, ggxLookupsHeld): its lookups
+// then read the atlas alone (object.frag, readGgx).
+uniform bool uSpecularHeld;
+uniform bool uCoatHeld;
 // The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
 // the exact BRDF, and taken out of every lookup (each lookup's lobe would have blurred them).
 uniform vec4 uLightDirection[MAX_BRIGHT_LIGHTS];  // xyz: unit direction, w: its angular radius

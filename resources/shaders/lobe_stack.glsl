@@ -25,16 +25,19 @@ vec2 cubeFaceCoord(vec3 d, out int face) {
     return 0.5 * (vec2(sc, tc) / ma + 1.0);
 }
 
-// Entry j at direction d: bilinear between its face's texel centres, across the face edge
-// through the border (which holds the lobe on the face's extended plane).
-vec3 stackEntryAt(int j, vec3 d) {
+// The atlas block `entry` (x, y, face size) at direction d, times `scale`: bilinear between its
+// face's texel centres, across the face edge through the border (which holds the lobe on the
+// face's extended plane).
+vec3 atlasRead(vec3 entry, float scale, vec3 d) {
     int face;
     vec2 st = cubeFaceCoord(d, face);
-    vec4 e = uStackEntry[j];
-    float stride = e.z + 2.0;
-    vec2 texel = e.xy + vec2(float(face % 3), float(face / 3)) * stride + 1.0 + st * e.z;
-    return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb * uStackScale[j];
+    float stride = entry.z + 2.0;
+    vec2 texel = entry.xy + vec2(float(face % 3), float(face / 3)) * stride + 1.0 + st * entry.z;
+    return textureLod(uStack, texel / vec2(textureSize(uStack, 0)), 0.0).rgb * scale;
 }
+
+// Entry j at direction d.
+vec3 stackEntryAt(int j, vec3 d) { return atlasRead(uStackEntry[j].xyz, uStackScale[j], d); }
 
 // λ ↔ n, the one place in GLSL (phong.h, exponentToLambda and lambdaToExponent):
 // λ(n) = max(0, log2(128·√3) − ½·log2(n + 1)), 0 for the mirror; n(λ) = 3·128²·4^−λ − 1 clamped at 0.

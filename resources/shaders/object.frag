@@ -48,12 +48,45 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
 }
 
 #ifdef LAYERED
+// Lookup k of `count` of a GGX layer (layered.glsl, ggxLookup) in the frame (t, b, N): its light
+// direction in the environment's frame, the lobe it reads (its share of the GGX lobe, widened by
+// the footprint `footprint` as lobes.h, footprintExponent, widens any lobe), the stack's nearest
+// entry to that lobe (2^¼ apart in n: within 9 % of it, which a lookup's share does not resolve)
+// and its weights G2/G1·(1 − (1 − v·h)⁵) and G2/G1·(1 − v·h)⁵ (0 below the horizon).
+struct LayerLookup {
+    vec3 light;
+    float shown;
+    int entry;
+    float weightA, weightB;
+};
+
+LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, int k, int count) {
+    GgxLookup g = ggxLookup(r.alpha, v, k, count);
+    float n = lookupExponent(g.pdf, count);
+    float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + footprint;
+    LayerLookup q;
+    q.light = normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal);
+    q.shown = u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+    q.entry = int(round(exponentLambda(q.shown) * float(STACK_STEPS_PER_LEVEL)));
+    q.weightA = max(g.weight, 0.0) * (1.0 - g.fresnelEdge);
+    q.weightB = max(g.weight, 0.0) * g.fresnelEdge;
+    return q;
+}
+
 // A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
-// lobe as wide as its share of the GGX lobe (widened by the footprint of R), or the chain at that
-// lobe's level, less what the bright lights put in that lobe; their means weighted by
-// G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
+// lobe as wide as its share of the GGX lobe (widened by the footprint of R), their means weighted
+// by G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
 // multiply; plus the bright lights through the exact BRDF of Fresnel `f0`, `f90`, times `layer`
 // (what the coat leaves, or takes). One lookup along R for the mirror.
+//
+// Two loops, of which a draw runs one (the other counts to 0): a CPU rasterizer runs both sides
+// of every branch for every fragment (llvmpipe: masked SIMD), but no loop that no fragment enters.
+//   held    (the stack holds every lookup's lobe: lobes.h, ggxLookupsHeld) one atlas read per
+//           lookup, of the remainder's entry (bright_lights.h: no lights in it) when made, else of
+//           the whole environment's less what the lights put in that lobe;
+//   else    per lookup the stack's entry where it holds it, else the chain at the level holding
+//           the lobe, less the lights' share: an entry still being made, a lobe sharper than the
+//           stack's first (near-mirror layers), a roughness map's fragments.
 vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, float layer) {
     float cosView = clamp(dot(r.normal, r.view), 1e-4, 1.0);
     vec3 t = r.view - cosView * r.normal;
@@ -67,37 +100,43 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, floa
     // The lights are points: shaded apart only where the lobe is wider than a few base texels
     // (uLightsMinAlpha, object_pass.cpp); a sharper lobe reads them in the environment.
     bool split = r.alpha >= uLightsMinAlpha;
+    bool subtract = split && !r.remainder;
     // The footprint widens every lookup's lobe the same way (lobes.h, footprintExponent).
     float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
-    for (int k = 0; k < count; ++k) {
-        GgxLookup g = ggxLookup(r.alpha, v, k, count);
-        if (g.weight <= 0.0) continue;
-        float n = lookupExponent(g.pdf, count);
-        vec3 l = normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal);
-        float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + footprint;
-        float shown = u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
-        // The stack's nearest entry (2^¼ apart in n: within 9 % of the lobe, which a lookup's
-        // share of the lobe does not resolve), one read; sharper than its first, the chain.
-        int j = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
+    int held = r.held ? count : 0;
+    for (int k = 0; k < held; ++k) {
+        LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
+        int j = clamp(q.entry, r.entries.x, r.entries.y);
+        // One read, of one table or the other (a select: both tables are uniforms).
+        vec4 entry = r.remainder ? uRemainderEntry[j] : vec4(uStackEntry[j].xyz, uStackScale[j]);
+        vec3 value = atlasRead(entry.xyz, entry.w, q.light);
+        if (subtract) value -= lightsThrough(q.light, uStackExponent[j]);
+        sumA += q.weightA * value;
+        sumB += q.weightB * value;
+        weightA += q.weightA;
+        weightB += q.weightB;
+    }
+    for (int k = held; k < count; ++k) {
+        LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
+        float shown = q.shown;
         vec3 value;
-        float a = g.weight * (1.0 - g.fresnelEdge), e = g.weight * g.fresnelEdge;
-        if (r.useStack && j >= r.entries.x) {
-            j = min(j, r.entries.y);
+        if (r.useStack && q.entry >= r.entries.x) {
+            int j = min(q.entry, r.entries.y);
             shown = uStackExponent[j];
-            value = stackEntryAt(j, l);
+            value = stackEntryAt(j, q.light);
         } else {
             // The chain at the level that holds the lobe the footprint shows (phong.h,
             // regularScheduleLevel): a near-mirror lookup reads the base, not a blurred level the
             // hardware's footprint would pick (a level's lobe is 3.6 of its texels wide).
             float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
-            value = textureLod(uEnvironment, l, level).rgb;
+            value = textureLod(uEnvironment, q.light, level).rgb;
         }
         // The lights in that lobe, shaded exactly below instead.
-        if (split) value -= lightsThrough(l, shown);
-        sumA += a * value;
-        sumB += e * value;
-        weightA += a;
-        weightB += e;
+        if (split) value -= lightsThrough(q.light, shown);
+        sumA += q.weightA * value;
+        sumB += q.weightB * value;
+        weightA += q.weightA;
+        weightB += q.weightB;
     }
     vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
     return split ? lookups + layer * lightsSpecular(r.normal, r.view, r.alpha, f0, f90) : lookups;

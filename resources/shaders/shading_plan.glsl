@@ -55,6 +55,8 @@ struct LayerRead {
     vec3 normal, view;       // READ_GGX: N and v in the environment's frame
     float alpha;             // READ_GGX: roughness²
     ivec2 entries;           // READ_GGX: the stack entries its lookups read (lobes.h, ggxEntries)
+    bool held;               // READ_GGX: the stack holds every lookup's lobe (lobes.h, ggxLookupsHeld)
+    bool remainder;          // READ_GGX, held: and the remainder's entries, without the bright lights
 };
 
 struct FragmentPlan {
@@ -88,12 +90,17 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.view = vec3(0.0);
     r.alpha = 0.0;
     r.entries = ivec2(0);
+    r.held = false;
+    r.remainder = false;
     return r;
 }
 
-LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries) {
+LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries,
+                  bool held, bool remainder) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
     g.entries = entries;
+    g.held = useStack && held;
+    g.remainder = g.held && remainder;
     g.normal = normal;
     g.view = view;
     g.alpha = roughness * roughness;
@@ -187,10 +194,10 @@ FragmentPlan planFragment() {
 #endif
     layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
                    p.wCoatEdge, p.coatWeight);
-    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries);
+    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
-    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries) : noRead();
+    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld, uCoatRemainder) : noRead();
     return p;
 #endif
 }

@@ -24,6 +24,21 @@ double brightThreshold(const CubeMap& base, double factor) {
     return omega > 0.0 ? factor * sum / omega : 0.0;
 }
 
+CubeMap withoutBrightLights(const CubeMap& base, double factor) {
+    CubeMap out = base;
+    const double threshold = brightThreshold(base, factor);
+    const int n = base.size();
+    if (threshold > 0.0)
+        for (Face f : kAllFaces)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const double l = luminance(base.at(f, x, y));
+                    if (l > threshold) out.at(f, x, y) *= static_cast<float>(threshold / l);
+                }
+    out.makeSeamless();
+    return out;
+}
+
 std::vector<PointLight> brightLights(const CubeMap& base, double factor, int maxLights) {
     struct Cluster {
         glm::dvec3 energy{0.0};

@@ -1,4 +1,5 @@
 #include "mipgloss/scene/chain_needs.h"
+#include "mipgloss/scene/lobes.h"
 
 #include "mipgloss/ibl/cubemap.h"
 #include "mipgloss/ibl/phong.h"
@@ -34,6 +35,7 @@ ChainNeeds chainNeeds(const Scene& scene, int faceSize) {
         for (const double lambda : lambdasOf(m)) reach(static_cast<float>(lambda));
     }
     needs.lastFilteredLevel = std::min(last, static_cast<int>(std::ceil(deepest - 1e-9)));
+    needs.remainderReach = remainderReach(scene, baseFaceSize);
     return needs;
 }
 

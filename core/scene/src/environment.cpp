@@ -1,4 +1,5 @@
 #include "mipgloss/scene/environment.h"
+#include "mipgloss/scene/lobes.h"
 
 #include "mipgloss/io/default_env.h"
 #include "mipgloss/ibl/irradiance.h"
@@ -27,7 +28,11 @@ bool PreparedEnvironment::sameImport(const EnvironmentSettings& other) const {
 bool PreparedEnvironment::satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const {
     return sameImport(other) && chain && settings.builder == other.builder &&
            lastFilteredLevel >= std::min(needs.lastFilteredLevel, levelCount() - 1) &&
-           (!needs.irradiance || irradiance);
+           (!needs.irradiance || irradiance) && (!wantsRemainder(needs.remainderReach) || remainderFilter);
+}
+
+bool PreparedEnvironment::wantsRemainder(double reach) const {
+    return settings.builder == Builder::Phong && !lights.empty() && reach > 0.0 && widestLight(lights) <= reach;
 }
 
 PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, const ChainNeeds& needs,
@@ -73,6 +78,14 @@ PreparedEnvironment prepareEnvironment(const EnvironmentSettings& settings, cons
             reportProgress(progress, "build", 0.0f);  // the pyramid reports nothing of its own
             out.filter = std::make_shared<const PhongFilter>(*out.base);
         }
+    }
+
+    // The remainder's filter, when the scene's layers read it: kept with the import once made.
+    if (settings.builder == Builder::Phong) {
+        if (previous && previous->remainderFilter && previous->sameImport(settings))
+            out.remainderFilter = previous->remainderFilter;
+        else if (out.wantsRemainder(needs.remainderReach))
+            out.remainderFilter = std::make_shared<const PhongFilter>(withoutBrightLights(*out.base));
     }
 
     // 2. The chain: kept when the builder matches and it is filtered deep enough. Otherwise built

@@ -113,6 +113,20 @@ std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool ma
     return out;
 }
 
+bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {
+    if (mapped || !(roughness > 0.0) || lookups < 1) return false;
+    // Head-on, the lookups' lobes are the layer's own width; toward grazing the GGX lobe is
+    // squeezed across the plane of incidence (2α·N·v) and its lookups sharpen past any stack.
+    const double alpha = roughness * roughness;
+    double sharpest = 0.0;
+    for (int k = 0; k < lookups; ++k) {
+        const GgxLookup g = ggxLookup(alpha, glm::dvec3(0.0, 0.0, 1.0), ggxSequence(k, lookups));
+        if (g.weight > 0.0) sharpest = std::max(sharpest, lookupExponent(g.pdf, lookups));
+    }
+    const auto sharp = stackBlend(sharpest, baseSize);
+    return sharp && sharp->sharper >= firstEntryMadeAhead(baseSize);
+}
+
 std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
     std::set<int> entries;
     const int top = stackTop(baseSize);
@@ -155,23 +169,64 @@ std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reac
     return near;
 }
 
-LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index) {
+LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index, bool remainder) {
     if (!environment.filter) throw std::logic_error("makeStackEntry: the environment has no Phong filter");
+    if (remainder && !environment.remainderFilter)
+        throw std::logic_error("makeStackEntry: the environment was prepared without its remainder");
     if (index < 1 || index > kStackLast) throw std::out_of_range("makeStackEntry: no stack entry " + std::to_string(index));
     LobeStackEntry lobe;
     lobe.index = index;
     lobe.exponent = stackExponent(index);
-    const int size = stackEntryFaceSize(lobe.exponent, environment.filter->baseSize());
-    lobe.cube = std::make_shared<const CubeMap>(environment.filter->filter(lobe.exponent, size));
+    lobe.remainder = remainder;
+    const PhongFilter& filter = remainder ? *environment.remainderFilter : *environment.filter;
+    const int size = stackEntryFaceSize(lobe.exponent, filter.baseSize());
+    lobe.cube = std::make_shared<const CubeMap>(filter.filter(lobe.exponent, size));
     lobe.filter = environment.filter;
     return lobe;
+}
+
+double widestLight(const std::vector<PointLight>& lights) {
+    double widest = 0.0;
+    for (const PointLight& light : lights) widest = std::max(widest, static_cast<double>(light.radius));
+    return widest;
+}
+
+bool ggxReadsRemainder(double roughness, int lookups, int baseSize, bool mapped, double widestLightRadius) {
+    const double alpha = roughness * roughness;
+    return alpha >= lightsApartMinAlpha(baseSize) && widestLightRadius <= alpha &&
+           ggxLookupsHeld(roughness, lookups, baseSize, mapped);
+}
+
+double remainderReach(const Scene& scene, int baseSize) {
+    double reach = 0.0;
+    if (!scene.display.brightLights) return reach;
+    for (const GgxInUse& g : lobesOfScene(scene).ggx)
+        if (ggxReadsRemainder(g.roughness, scene.display.ggxLookups, baseSize, g.mapped, 0.0))
+            reach = std::max(reach, g.roughness * g.roughness);
+    return reach;
+}
+
+std::vector<int> remainderEntries(const Scene& scene, int baseSize, const std::vector<PointLight>& lights) {
+    if (lights.empty() || !scene.display.brightLights) return {};
+    std::set<int> entries;
+    const double widest = widestLight(lights);
+    for (const GgxInUse& g : lobesOfScene(scene).ggx) {
+        if (!ggxReadsRemainder(g.roughness, scene.display.ggxLookups, baseSize, g.mapped, widest)) continue;
+        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize, g.mapped);
+        entries.insert(range.begin(), range.end());
+    }
+    return {entries.begin(), entries.end()};
 }
 
 std::vector<std::shared_ptr<const LobeStackEntry>> makeStackEntries(const PreparedEnvironment& environment, const Scene& scene) {
     std::vector<std::shared_ptr<const LobeStackEntry>> lobes;
     if (!environment.filter) return lobes;
-    for (int index : lobesInUse(scene, environment.filter->baseSize()))
+    const int baseSize = environment.filter->baseSize();
+    for (int index : lobesInUse(scene, baseSize))
         lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
+    if (environment.remainderFilter)
+        for (int index : remainderEntries(scene, baseSize, environment.lights))
+            lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index, true)));
     return lobes;
 }
 

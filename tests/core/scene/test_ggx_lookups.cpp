@@ -32,21 +32,6 @@ Frame frameOf(const glm::dvec3& n, const glm::dvec3& v) {
     return {t, glm::cross(n, t), n, glm::dvec3(std::sqrt(1 - mu * mu), 0, mu)};
 }
 
-// The base with every texel clamped at the bright threshold: what the lookups see once the
-// lights are taken out of them.
-CubeMap clampedAtThreshold(const CubeMap& base) {
-    CubeMap out = base;
-    const double threshold = brightThreshold(base);
-    for (Face f : kAllFaces)
-        for (int y = 0; y < base.size(); ++y)
-            for (int x = 0; x < base.size(); ++x) {
-                const double l = luminance(base.at(f, x, y));
-                if (l > threshold) out.at(f, x, y) *= static_cast<float>(threshold / l);
-            }
-    out.makeSeamless();
-    return out;
-}
-
 // A white metal's specular as the renderer models it: K lookups of the clamped field, each the
 // exact Phong lobe, scaled by the table's albedo, plus the lights through the exact BRDF.
 double modelled(const CubeMap& smooth, const std::vector<PointLight>& lights, double roughness, const glm::dvec3& n,
@@ -81,7 +66,7 @@ TEST(GgxLookups, EightLookupsAndTheBrightLightsAreNearTheTruthOfARoughMetal) {
     o.faceSize = 64;
     const CubeMap base = loadEnvironment(path, o).cube;
     const RadianceTree tree(base);
-    const CubeMap smooth = clampedAtThreshold(base);
+    const CubeMap smooth = withoutBrightLights(base);
     const std::vector<PointLight> lights = brightLights(base, kBrightFactor, 1 << 20);  // every bright texel
     const glm::dvec3 v = glm::normalize(glm::dvec3(0.3, 0.2, 1.0));
     const glm::dvec3 a = glm::normalize(glm::cross(v, glm::dvec3(0, 1, 0))), b = glm::cross(a, v);

@@ -265,3 +265,87 @@ TEST(LobeStack, BlendOfExactNeighboursIsWithinOnePercentOfTheLobeBetween) {
 
 }  // namespace
 }  // namespace mipgloss
+
+namespace mipgloss {
+namespace {
+
+Material layered(float roughness, bool mapped = false) {
+    Material m;
+    m.layered = true;
+    m.layers.roughness = roughness;
+    if (mapped) m.layers.maps.roughness.file = "roughness.png";
+    return m;
+}
+
+TEST(RemainderStack, LayersReadItOnlyWhereEveryLightIsNarrowerThanTheirLobe) {
+    const int base = 256;
+    const std::vector<PointLight> sun{{glm::vec3(0, 1, 0), Rgb(100.0f), 0.01f}};
+    const std::vector<PointLight> softBox{{glm::vec3(0, 1, 0), Rgb(100.0f), 0.4f}};
+    // r 0.6: α 0.36, its lookups held (head-on the sharpest is inside the stack).
+    ASSERT_TRUE(ggxLookupsHeld(0.6, kGgxLookups, base));
+    EXPECT_TRUE(ggxReadsRemainder(0.6, kGgxLookups, base, false, 0.01));
+    EXPECT_TRUE(ggxReadsRemainder(0.6, kGgxLookups, base, false, 0.36)) << "ρ = α";
+    EXPECT_FALSE(ggxReadsRemainder(0.6, kGgxLookups, base, false, 0.37)) << "a light wider than the lobe";
+    // A near-mirror layer is not held (its sharpest lookups read the chain) and reads the lights
+    // in the environment (α = 0.0025 < 4/256); a roughness map may be any roughness.
+    EXPECT_FALSE(ggxLookupsHeld(0.05, kGgxLookups, base));
+    EXPECT_FALSE(ggxReadsRemainder(0.05, kGgxLookups, base, false, 0.0));
+    EXPECT_FALSE(ggxLookupsHeld(0.6, kGgxLookups, base, true));
+    EXPECT_FALSE(ggxReadsRemainder(0.6, kGgxLookups, base, true, 0.0));
+
+    Scene scene = sceneOf({layered(0.6f), layered(0.05f), layered(0.8f, true)});
+    EXPECT_EQ(remainderEntries(scene, base, sun), ggxEntries(0.6, kGgxLookups, base)) << "the rough layer's entries alone";
+    EXPECT_TRUE(remainderEntries(scene, base, softBox).empty());
+    EXPECT_TRUE(remainderEntries(scene, base, {}).empty()) << "no lights: the whole stack is the remainder";
+    EXPECT_NEAR(remainderReach(scene, base), 0.36, 1e-6);
+    EXPECT_NEAR(chainNeeds(scene, base).remainderReach, 0.36, 1e-6);
+    scene.display.brightLights = false;
+    EXPECT_TRUE(remainderEntries(scene, base, sun).empty()) << "lights not shaded apart";
+    EXPECT_EQ(remainderReach(scene, base), 0.0);
+}
+
+TEST(RemainderStack, EntryIsTheWholeEntryLessTheLightsExcessThroughTheSameLobe) {
+    const auto path = test::asset("env/sunrise.exr");
+    MIPGLOSS_REQUIRE_ASSET(path);
+    EnvironmentSettings settings;
+    settings.source = path.string();
+    settings.faceSize = 32;
+    const PreparedEnvironment none = prepareEnvironment(settings, ChainNeeds{0, false});
+    ASSERT_FALSE(none.lights.empty());
+    EXPECT_FALSE(none.remainderFilter) << "no layer asked for it";
+    EXPECT_THROW(makeStackEntry(none, 40, true), std::logic_error);
+    const PreparedEnvironment env = prepareEnvironment(settings, ChainNeeds{0, false, 1.0});
+    ASSERT_TRUE(env.remainderFilter);
+    EXPECT_TRUE(env.satisfies(settings, ChainNeeds{0, false, 1.0}));
+    EXPECT_FALSE(none.satisfies(settings, ChainNeeds{0, false, 1.0})) << "the remainder is built when asked";
+    EXPECT_FALSE(none.wantsRemainder(widestLight(none.lights) * 0.5)) << "lights wider than every layer: not built";
+    // The filter is linear: whole − remainder = the filter of what the lights took out, texel for
+    // texel (float sums: within 1e-4 of the whole entry's largest value).
+    CubeMap excess = *env.base;
+    const CubeMap remainder = withoutBrightLights(*env.base);
+    for (Face f : kAllFaces)
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) excess.at(f, x, y) -= remainder.at(f, x, y);
+    excess.makeSeamless();
+    const PhongFilter excessFilter(excess);
+    for (int index : {24, 40, 56}) {
+        SCOPED_TRACE("entry " + std::to_string(index));
+        const LobeStackEntry whole = makeStackEntry(env, index), rest = makeStackEntry(env, index, true);
+        EXPECT_TRUE(rest.remainder);
+        EXPECT_EQ(stackKey(rest), index + kRemainderKeyOffset);
+        EXPECT_EQ(rest.filter, env.filter) << "known by its environment's filter, like every entry";
+        const CubeMap lights = excessFilter.filter(whole.exponent, whole.cube->size());
+        float largest = 0.0f;
+        for (Face f : kAllFaces)
+            for (int y = 0; y < whole.cube->size(); ++y)
+                for (int x = 0; x < whole.cube->size(); ++x) largest = std::max(largest, whole.cube->at(f, x, y).g);
+        for (Face f : kAllFaces)
+            for (int y = 0; y < whole.cube->size(); ++y)
+                for (int x = 0; x < whole.cube->size(); ++x)
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(whole.cube->at(f, x, y)[c] - rest.cube->at(f, x, y)[c], lights.at(f, x, y)[c], 1e-4f * largest);
+    }
+}
+
+}  // namespace
+}  // namespace mipgloss

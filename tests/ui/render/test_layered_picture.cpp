@@ -38,7 +38,7 @@ std::shared_ptr<const PreparedEnvironment> prepared(const std::filesystem::path&
         EnvironmentSettings settings;
         settings.source = file.string();
         settings.faceSize = faceSize;
-        env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
+        env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true, 1.0}));
     }
     return env;
 }

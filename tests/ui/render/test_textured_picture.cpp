@@ -48,7 +48,7 @@ std::shared_ptr<const PreparedEnvironment> environment(const std::string& map, i
         EnvironmentSettings settings;
         settings.source = test::asset("env/" + map + ".exr").string();
         settings.faceSize = faceSize;
-        env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true}));
+        env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true, 1.0}));
     }
     return env;
 }

@@ -15,9 +15,10 @@ namespace mipgloss::ui {
 
 namespace {
 // True when a job for (a, na) makes what (b, nb) asks for: the same environment filtered at least
-// as deep, with the irradiance map if b needs one.
+// as deep, with the irradiance map and the remainder's filter if b needs them.
 bool covers(const EnvironmentSettings& a, const ChainNeeds& na, const EnvironmentSettings& b, const ChainNeeds& nb) {
-    return a == b && na.lastFilteredLevel >= nb.lastFilteredLevel && (na.irradiance || !nb.irradiance);
+    return a == b && na.lastFilteredLevel >= nb.lastFilteredLevel && (na.irradiance || !nb.irradiance) &&
+           na.remainderReach >= nb.remainderReach;
 }
 }  // namespace
 
@@ -61,9 +62,15 @@ void EnvironmentManager::startLobeJob() {
     const int baseSize = current_->filter->baseSize();
     const std::vector<int> inUse = lobesInUse(document_->scene(), baseSize);
     const std::vector<int> near = lobesNear(inUse, baseSize);
+    // Keys (lobes.h, stackKey): the whole environment's entries, then the remainder's the GGX
+    // layers read (only those in use: none is made ahead).
+    std::vector<int> inUseKeys = inUse;
+    if (current_->remainderFilter)
+        for (int index : remainderEntries(document_->scene(), baseSize, current_->lights))
+            inUseKeys.push_back(stackKey(index, true));
     std::vector<int> missing;
-    for (int index : inUse)
-        if (!lobes_.count(index)) missing.push_back(index);
+    for (int key : inUseKeys)
+        if (!lobes_.count(key)) missing.push_back(key);
     const bool forInUse = !missing.empty();
     if (!forInUse) {
         if (lobeJob_) return;  // an entry near them is being made; its end starts the next
@@ -78,7 +85,7 @@ void EnvironmentManager::startLobeJob() {
     // Keep what is in use or will be made next (the whole stack of faces up to 512), drop the
     // rest: sharp entries of a big base no lobe reads any more.
     const auto dropped = std::erase_if(lobes_, [&](const auto& entry) {
-        return std::find(inUse.begin(), inUse.end(), entry.first) == inUse.end() &&
+        return std::find(inUseKeys.begin(), inUseKeys.end(), entry.first) == inUseKeys.end() &&
                std::find(near.begin(), near.end(), entry.first) == near.end();
     });
     if (dropped > 0) emit lobesReady();
@@ -94,9 +101,10 @@ void EnvironmentManager::startLobeJob() {
         [environment, missing](Job& job) {
             std::vector<std::shared_ptr<const LobeStackEntry>> made;
             try {
-                for (int index : missing) {
+                for (int key : missing) {
                     if (job.cancelled()) break;
-                    made.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(*environment, index)));
+                    made.push_back(std::make_shared<const LobeStackEntry>(
+                        makeStackEntry(*environment, stackKeyIndex(key), isRemainderKey(key))));
                 }
             } catch (const std::exception& e) {
                 std::cerr << "mipgloss: lobe stack entry: " << e.what() << '\n';
@@ -110,7 +118,7 @@ void EnvironmentManager::startLobeJob() {
             bool changed = false;
             for (const auto& lobe : outcome.value.value_or(std::vector<std::shared_ptr<const LobeStackEntry>>{}))
                 if (current_ && lobe->filter == current_->filter) {
-                    lobes_[lobe->index] = lobe;
+                    lobes_[stackKey(*lobe)] = lobe;
                     ++counters_.lobeBuilds;
                     changed = true;
                 }

@@ -30,9 +30,13 @@ struct Renderer::Impl::LayeredUniforms {
           useDiffuseStack(p.uniformLocation("uUseDiffuseStack")),
           diffuseIrradiance(p.uniformLocation("uDiffuseIrradiance")),
           specularEntries(p.uniformLocation("uSpecularEntries")),
-          coatEntries(p.uniformLocation("uCoatEntries")) {}
+          coatEntries(p.uniformLocation("uCoatEntries")),
+          specularRemainder(p.uniformLocation("uSpecularRemainder")),
+          coatRemainder(p.uniformLocation("uCoatRemainder")),
+          specularHeld(p.uniformLocation("uSpecularHeld")),
+          coatHeld(p.uniformLocation("uCoatHeld")) {}
     int f0, f90, diffuseF0, diffuseColour, specularRoughness, coat, coatRoughness, useCoatStack, useDiffuseStack,
-        diffuseIrradiance, specularEntries, coatEntries;
+        diffuseIrradiance, specularEntries, coatEntries, specularRemainder, coatRemainder, specularHeld, coatHeld;
 };
 
 // The uniforms a single-lobe material shares with a layered one's specular layer.
@@ -84,6 +88,9 @@ void Renderer::Impl::bindStack(QOpenGLShaderProgram& program) {
     gl->glUniform4fv(program.uniformLocation("uStackEntry"), kStackSlots, glm::value_ptr(table[0]));
     gl->glUniform1fv(program.uniformLocation("uStackExponent"), kStackSlots, stackExponents.data());
     gl->glUniform1fv(program.uniformLocation("uStackScale"), kStackSlots, stackScales.data());
+    std::array<glm::vec4, kStackSlots> remainder = remainderTable;
+    if (!current) remainder.fill(glm::vec4(0.0f));
+    gl->glUniform4fv(program.uniformLocation("uRemainderEntry"), kStackSlots, glm::value_ptr(remainder[0]));
     gl->glUniform1i(program.uniformLocation("uStackTop"), stackTop(std::max(stackBaseSize, 1)));
     gl->glActiveTexture(GL_TEXTURE0 + unitIndex(TextureUnit::Stack));
     gl->glBindTexture(GL_TEXTURE_2D, stackTexture);
@@ -188,6 +195,19 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     const bool coat = plan.hasCoat && plan.coat.readsLobeStack && holds(coatEntries);
     gl->glUniform2i(u.specularEntries, specularEntries.x, specularEntries.y);
     gl->glUniform2i(u.coatEntries, coatEntries.x, coatEntries.y);
+    // Whether the stack holds every lookup of each layer (its lookups read the atlas alone), and
+    // whether they read the remainder entries (no lights to subtract in them).
+    const int base = std::max(stackBaseSize, 1);
+    const bool specularHeld = specular && ggxLookupsHeld(m.layers.roughness, lookups, base, !m.layers.maps.roughness.empty());
+    const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, lookups, base);
+    gl->glUniform1i(u.specularHeld, specularHeld ? 1 : 0);
+    gl->glUniform1i(u.coatHeld, coatHeld ? 1 : 0);
+    const double widest = environment ? widestLight(environment->lights) : 0.0;
+    auto readsRemainder = [&](bool held, double roughness, glm::ivec2 range) {
+        return held && ggxReadsRemainder(roughness, lookups, base, false, widest) && remainderHolds(range.x, range.y);
+    };
+    gl->glUniform1i(u.specularRemainder, readsRemainder(specularHeld, m.layers.roughness, specularEntries) ? 1 : 0);
+    gl->glUniform1i(u.coatRemainder, readsRemainder(coatHeld, m.layers.coatRoughness, coatEntries) ? 1 : 0);
     const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
     auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
     auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };
@@ -257,10 +277,10 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
         gl->glUniform4fv(program.uniformLocation("uLightDirection"), kMaxBrightLights, glm::value_ptr(directions[0]));
         gl->glUniform3fv(program.uniformLocation("uLightEnergy"), kMaxBrightLights, glm::value_ptr(energies[0]));
         gl->glUniform1i(program.uniformLocation("uLightCount"), scene.display.brightLights ? count : 0);
-        // Points stand for texels of about 2/N rad: a GGX lobe shades them apart from α = 4/N on
-        // (a lobe at least two texels wide); sharper ones read them in the environment.
+        // A GGX lobe shades them apart from α = 4/N on (lobes.h, lightsApartMinAlpha); sharper
+        // ones read them in the environment.
         gl->glUniform1f(program.uniformLocation("uLightsMinAlpha"), scene.display.brightLights
-                                                                        ? 4.0f / static_cast<float>(std::max(environmentFaceSize, 1))
+                                                                        ? static_cast<float>(lightsApartMinAlpha(environmentFaceSize))
                                                                         : std::numeric_limits<float>::infinity());
     }
 

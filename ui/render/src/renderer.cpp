@@ -297,12 +297,13 @@ void Renderer::setTextures(std::shared_ptr<const TextureCache> textures) { impl_
 void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>& lobes) {
     Impl& d = *impl_;
     if (!d.gl) return;
-    std::map<int, std::shared_ptr<const LobeStackEntry>> wanted;
+    std::map<int, std::shared_ptr<const LobeStackEntry>> wanted;  // by stackKey: both kinds
     for (const auto& lobe : lobes)
-        if (lobe && lobe->cube && lobe->index >= 1 && lobe->index <= kStackLast) wanted[lobe->index] = lobe;
+        if (lobe && lobe->cube && lobe->index >= 1 && lobe->index <= kStackLast) wanted[stackKey(*lobe)] = lobe;
     if (wanted == d.stackEntries) return;
     d.stackEntries = wanted;
     d.stackTable.fill(glm::vec4(0.0f));
+    d.remainderTable.fill(glm::vec4(0.0f));
     d.counters.lobesResident = wanted.size();
     d.counters.stackBytes = 0;
     if (wanted.empty()) return;
@@ -315,7 +316,7 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>
     // scaled back in the shader (uStackScale), so no environment's absolute scale matters
     // (docs/lobe-stack.md).
     std::vector<std::pair<int, const CubeMap*>> cubes;
-    for (const auto& [index, lobe] : wanted) cubes.emplace_back(index, lobe->cube.get());
+    for (const auto& [key, lobe] : wanted) cubes.emplace_back(key, lobe->cube.get());
     GLint maxSize = 0;
     d.gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     const PackedLobeStack packed = packLobeStack(cubes, std::min(4096, static_cast<int>(maxSize)));
@@ -323,9 +324,13 @@ void Renderer::setLobes(const std::vector<std::shared_ptr<const LobeStackEntry>>
     d.stackScales.fill(1.0f);
     for (std::size_t e = 0; e < cubes.size(); ++e) {
         const AtlasPlacement& at = atlas.placed[e];
-        d.stackScales[static_cast<std::size_t>(at.index)] = packed.scales[e];
-        d.stackTable[static_cast<std::size_t>(at.index)] =
-            glm::vec4(static_cast<float>(at.x), static_cast<float>(at.y), static_cast<float>(at.size), 1.0f);
+        const auto index = static_cast<std::size_t>(stackKeyIndex(at.index));
+        if (isRemainderKey(at.index)) {
+            d.remainderTable[index] = glm::vec4(static_cast<float>(at.x), static_cast<float>(at.y), static_cast<float>(at.size), packed.scales[e]);
+        } else {
+            d.stackScales[index] = packed.scales[e];
+            d.stackTable[index] = glm::vec4(static_cast<float>(at.x), static_cast<float>(at.y), static_cast<float>(at.size), 1.0f);
+        }
         ++d.counters.lobeUploads;
     }
     d.gl->glBindTexture(GL_TEXTURE_2D, d.stackTexture);

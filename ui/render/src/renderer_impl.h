@@ -79,6 +79,9 @@ struct Renderer::Impl {
     std::array<glm::vec4, kStackSlots> stackTable{};  // block x, y, face size, 1 when present
     std::array<float, kStackSlots> stackExponents{};
     std::array<float, kStackSlots> stackScales{};  // what an entry's stored texels are multiplied by
+    // The remainder entries (lobes.h, LobeStackEntry::remainder) in the same atlas: per index,
+    // block x, y, face size and what its texels are multiplied by (0 when absent).
+    std::array<glm::vec4, kStackSlots> remainderTable{};
     int stackBaseSize = 0;  // the base face size the entries were made from
     std::optional<std::array<int, 4>> outputRect;  // setOutputRect: x, y, width, height
     bool transparentBackground = false;
@@ -100,6 +103,13 @@ struct Renderer::Impl {
     // Whether shaders should look lobe n up in the stack (they then check, per fragment, that the
     // entries the footprint-widened lobe blends are there, and read the chain where not).
     bool stackServes(double exponent) const { return stackCurrent() && stackBlend(exponent, stackBaseSize).has_value(); }
+    // Whether the remainder entries j0 … j1 are all on the GPU, from the current environment.
+    bool remainderHolds(int first, int last) const {
+        if (!stackCurrent() || first > last) return false;
+        for (int j = first; j <= last; ++j)
+            if (!stackEntries.count(stackKey(j, true))) return false;
+        return true;
+    }
     // Whether the stack holds lobe n itself: both entries it blends (the settled picture's test).
     bool stackHolds(double exponent) const {
         if (!stackCurrent()) return false;

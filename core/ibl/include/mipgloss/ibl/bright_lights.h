@@ -33,4 +33,11 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor = kBrigh
 // The luminance above which a texel is bright: factor × the mean luminance.
 double brightThreshold(const CubeMap& base, double factor = kBrightFactor);
 
+// The smooth remainder: the base with every bright texel scaled down to the threshold's luminance
+// (its colour kept), i.e. the base less exactly what brightLights takes out, texel by texel, so
+// remainder + lights = base in energy whatever the lights' merging. The lobe stack's remainder
+// entries (scene/lobes.h) are filtered from it: a GGX layer's lookups read them and need not
+// subtract the lights from each lookup. Borders filled.
+CubeMap withoutBrightLights(const CubeMap& base, double factor = kBrightFactor);
+
 }  // namespace mipgloss

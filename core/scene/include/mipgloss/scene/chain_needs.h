@@ -15,9 +15,13 @@ namespace mipgloss {
 // `irradiance`: some visible object in normal mode asks for the irradiance map.
 // A face size below 1 (a scene's not yet known) counts as 1. The filtered range only grows in
 // whole levels and, once built, is kept (see prepareEnvironment).
+// `remainderReach`: the widest α of the layers that would read the environment without its bright
+// lights (lobes.h, remainderReach; 0: none), so the default builder also filters that remainder
+// when the environment's lights are no wider (PreparedEnvironment::wantsRemainder).
 struct ChainNeeds {
     int lastFilteredLevel = 0;
     bool irradiance = false;
+    double remainderReach = 0.0;
     bool operator==(const ChainNeeds&) const = default;
 };
 ChainNeeds chainNeeds(const Scene& scene, int baseFaceSize);

@@ -36,6 +36,9 @@ struct PreparedEnvironment {
     // The default builder's energy pyramid of this import, for stack entries (lobes.h); null for
     // the other builders.
     std::shared_ptr<const PhongFilter> filter;
+    // The same for the smooth remainder (withoutBrightLights), for the GGX layers' lookups; made
+    // only when some layer reads it (wantsRemainder).
+    std::shared_ptr<const PhongFilter> remainderFilter;
     double importSeconds = 0.0, buildSeconds = 0.0, irradianceSeconds = 0.0;
 
     int levelCount() const { return chain ? chain->levelCount() : 0; }
@@ -43,6 +46,9 @@ struct PreparedEnvironment {
     bool complete() const { return chain != nullptr; }
     // True when the import (source, size, layout, handedness) matches.
     bool sameImport(const EnvironmentSettings& other) const;
+    // True when layers up to α = reach read a remainder filter of it (lobes.h, ggxReadsRemainder):
+    // the default builder, some bright lights, none wider than reach.
+    bool wantsRemainder(double reach) const;
     // True when nothing has to be built for these settings and needs.
     bool satisfies(const EnvironmentSettings& other, const ChainNeeds& needs) const;
 };

@@ -59,9 +59,24 @@ double footprintExponent(double exponent, double dx, double dy);
 struct LobeStackEntry {
     int index = 0;            // the stack entry (λ = index / 8)
     double exponent = 0.0;    // the lobe it holds, stackExponent(index)
+    // Made from the smooth remainder (bright_lights.h, withoutBrightLights) instead of the whole
+    // environment: what a GGX layer that shades the bright lights apart reads (remainderEntries).
+    bool remainder = false;
     std::shared_ptr<const CubeMap> cube;
-    std::shared_ptr<const PhongFilter> filter;  // the environment it was made from
+    std::shared_ptr<const PhongFilter> filter;  // the environment it was made from (its whole filter, either kind)
 };
+
+// Entries of both kinds in one map or atlas: a remainder entry's key is its index + kStackSlots.
+inline constexpr int kRemainderKeyOffset = kStackSlots;
+inline int stackKey(int index, bool remainder) { return remainder ? index + kRemainderKeyOffset : index; }
+inline int stackKey(const LobeStackEntry& entry) { return stackKey(entry.index, entry.remainder); }
+inline bool isRemainderKey(int key) { return key >= kRemainderKeyOffset; }
+inline int stackKeyIndex(int key) { return isRemainderKey(key) ? key - kRemainderKeyOffset : key; }
+
+// The least α at which a GGX layer shades the bright lights apart (α = 4/N for a base of face N: a
+// lobe at least two texels wide; a point stands for texels of about 2/N rad). A sharper layer
+// reads the lights in the environment, through the whole stack or the chain.
+inline double lightsApartMinAlpha(int baseSize) { return 4.0 / static_cast<double>(baseSize > 1 ? baseSize : 1); }
 
 // How many entries past a lobe's wider neighbour the scene asks for, for pixels whose footprint
 // widens the lobe (footprintExponent): 4, half a level, holds lobes down to 2^(−5/4) ≈ 0.42 of n.
@@ -88,6 +103,32 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize);
 // wider neighbour, ascending. With a roughness map (`mapped`), any roughness up to it: every entry
 // from firstEntryMadeAhead on. None for the mirror (roughness 0).
 std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool mapped = false);
+// Whether the stack holds such a layer's lookups, so they need never read the chain: true when
+// its sharpest lookup head-on is no sharper than the first entry the stack makes
+// (firstEntryMadeAhead); false with a roughness map (any fragment may be sharper) and for
+// near-mirror layers. object.frag's readGgx then reads the atlas alone, in its own loop: a lookup
+// sharper than the layer's first entry (toward grazing, where the GGX lobe is squeezed across the
+// plane of incidence, 2α·N·v) reads that entry, a lobe no wider than the stack's sharpest
+// (docs/material-truth.md measures what that costs at grazing).
+bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped = false);
+// The widest of the lights (their radius ρ, bright_lights.h); 0 for none.
+double widestLight(const std::vector<PointLight>& lights);
+// Whether a GGX layer's lookups read the remainder entries (the environment without its bright
+// lights) instead of the whole environment less each light through each lookup. Both give
+// lookups + the lights through the exact BRDF; they differ in where the lights' model (each a disc
+// at its texels' mean, bright_lights.h) shows. Subtracted from each lookup, the model's error
+// cancels wherever a lookup's lobe blurs the light as the BRDF does; with the remainder it is
+// shown whole. So the remainder is read only where every light is no wider than the layer's
+// half-vector lobe, ρ ≤ α (its reflected lobe is about 2α wide), and the layer shades the lights
+// apart (α ≥ lightsApartMinAlpha) and its lookups are held (ggxLookupsHeld). Measured against the
+// truth in docs/material-truth.md ("Lights taken out").
+bool ggxReadsRemainder(double roughness, int lookups, int baseSize, bool mapped, double widestLightRadius);
+// The widest α of the scene's GGX layers that would read the remainder if the lights were narrow
+// enough (every condition of ggxReadsRemainder but the lights'); 0 when none would.
+double remainderReach(const Scene& scene, int baseSize);
+// The remainder entries the scene's GGX layers read (ascending indices, not keys): ggxEntries of
+// every visible layer that reads them (ggxReadsRemainder), when the display shades the lights.
+std::vector<int> remainderEntries(const Scene& scene, int baseSize, const std::vector<PointLight>& lights);
 // The first entry of a face up to kGrazingLargestFace: where what is made ahead begins.
 int firstEntryMadeAhead(int baseSize);
 // The entries within `reach` steps of those in use (`inUse`, ascending: lobesInUse), not in use and
@@ -96,12 +137,14 @@ int firstEntryMadeAhead(int baseSize);
 // use, every such entry from the wide end.
 std::vector<int> lobesNear(const std::vector<int>& inUse, int baseSize, int reach = kStackSlots);
 
-// Entry `index` from the environment's filter. The environment must have been prepared with the
-// default builder (filter set). Throws Cancelled if asked.
-LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index);
+// Entry `index` from the environment's filter, or with `remainder` from its remainder's (prepared
+// with ChainNeeds::remainder). The environment must have been prepared with the default builder
+// (filter set). Throws Cancelled if asked.
+LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index, bool remainder = false);
 
-// Every entry the scene shows (lobesInUse), made now, for `mipgloss render` and the tests (the
-// window makes them on its worker). Empty when the environment has no filter.
+// Every entry the scene shows (lobesInUse, then the remainderEntries when the environment has its
+// remainder), made now, for `mipgloss render` and the tests (the window makes them on its worker).
+// Empty when the environment has no filter.
 std::vector<std::shared_ptr<const LobeStackEntry>> makeStackEntries(const PreparedEnvironment& environment, const Scene& scene);
 
 // Lobe n at `direction` as the renderer reads it from these entries: each entry bilinear between

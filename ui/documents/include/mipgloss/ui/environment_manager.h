@@ -127,7 +127,7 @@ private:
     // Last request that failed, so the same bad file is not retried on every scene change.
     EnvironmentSettings failedSettings_;
     bool haveFailed_ = false;
-    // Stack entries of current_ by key (each knows its environment's filter; others are dropped).
+    // Stack entries of current_ by stackKey (lobes.h: each knows its environment's filter; others are dropped).
     std::map<int, std::shared_ptr<const LobeStackEntry>> lobes_;
     bool lobeBusy_ = false;
     bool lobesWanted_ = false;
