@@ -62,7 +62,7 @@ const char* const kRenderUsage = R"(
                   [--spin DEG] [--turntable N] [--turntable-spin object|environment]
                   [--compare-builder NAME] [--compare-env FILE]
                   [--aov AOV.exr] --out IMAGE.png|IMAGE.exr|PATTERN
-  mipgloss bench-render [--objects N] [--size WxH] [--frames F] [--mesh FILE | --million]
+  mipgloss bench-render [--objects N] [--size WxH] [--frames F] [--no-stack] [--mesh FILE | --million]
 
 render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X display; under
   CI: xvfb-run). With no scene and no mesh: the default scene (the paper's Figure 1). With --env
@@ -144,7 +144,10 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
                  exact)
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
-  sharing one lambda (the paper: the per-object statement is free), ratio printed. With --mesh:
+  sharing one lambda (the paper: the per-object statement is free), ratio printed, and the same
+  teapots in layered materials (a plastic, with a coat, a rough plastic): each case the settled
+  picture, its lobe stack's entries made before the clock starts (--no-stack: every lobe from the
+  chain, the picture before they exist). With --mesh:
   load time, first frame and frame time of that one mesh or asset (is a big scan interactive?), and
   for an asset the time to decode its textures and the ratio of the time to the first frame to
   the time to read its files alone; --million: the same for a generated sphere of a million

@@ -113,8 +113,8 @@ std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool ma
     return out;
 }
 
-bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {
-    if (mapped || !(roughness > 0.0) || lookups < 1) return false;
+int ggxHeadOnEntry(double roughness, int lookups, int baseSize) {
+    if (!(roughness > 0.0) || lookups < 1) return -1;
     // Head-on, the lookups' lobes are the layer's own width; toward grazing the GGX lobe is
     // squeezed across the plane of incidence (2α·N·v) and its lookups sharpen past any stack.
     const double alpha = roughness * roughness;
@@ -124,7 +124,20 @@ bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {
         if (g.weight > 0.0) sharpest = std::max(sharpest, lookupExponent(g.pdf, lookups));
     }
     const auto sharp = stackBlend(sharpest, baseSize);
-    return sharp && sharp->sharper >= firstEntryMadeAhead(baseSize);
+    return sharp && sharp->sharper >= firstEntryMadeAhead(baseSize) ? sharp->sharper : -1;
+}
+
+bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {
+    return !mapped && ggxHeadOnEntry(roughness, lookups, baseSize) >= 0;
+}
+
+std::vector<int> remainderEntriesOf(double roughness, int lookups, int baseSize) {
+    const int first = ggxHeadOnEntry(roughness, lookups, baseSize);
+    std::vector<int> out;
+    if (first < 0) return out;
+    for (int j : ggxEntries(roughness, lookups, baseSize))
+        if (j >= first) out.push_back(j);
+    return out;
 }
 
 std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
@@ -212,7 +225,7 @@ std::vector<int> remainderEntries(const Scene& scene, int baseSize, const std::v
     const double widest = widestLight(lights);
     for (const GgxInUse& g : lobesOfScene(scene).ggx) {
         if (!ggxReadsRemainder(g.roughness, scene.display.ggxLookups, baseSize, g.mapped, widest)) continue;
-        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize, g.mapped);
+        const std::vector<int> range = remainderEntriesOf(g.roughness, scene.display.ggxLookups, baseSize);
         entries.insert(range.begin(), range.end());
     }
     return {entries.begin(), entries.end()};

@@ -294,7 +294,15 @@ TEST(RemainderStack, LayersReadItOnlyWhereEveryLightIsNarrowerThanTheirLobe) {
     EXPECT_FALSE(ggxReadsRemainder(0.6, kGgxLookups, base, true, 0.0));
 
     Scene scene = sceneOf({layered(0.6f), layered(0.05f), layered(0.8f, true)});
-    EXPECT_EQ(remainderEntries(scene, base, sun), ggxEntries(0.6, kGgxLookups, base)) << "the rough layer's entries alone";
+    EXPECT_EQ(remainderEntries(scene, base, sun), remainderEntriesOf(0.6, kGgxLookups, base)) << "the rough layer's entries alone";
+    // Those are the layer's entries from the one holding its sharpest lookup head-on: the sharper
+    // ones its grazing lookups would read are made for the whole environment only.
+    const std::vector<int> all = ggxEntries(0.6, kGgxLookups, base), rest = remainderEntriesOf(0.6, kGgxLookups, base);
+    ASSERT_FALSE(rest.empty());
+    EXPECT_EQ(rest.front(), ggxHeadOnEntry(0.6, kGgxLookups, base));
+    EXPECT_EQ(rest.back(), all.back());
+    EXPECT_GT(rest.front(), all.front()) << "grazing lookups are sharper than head-on ones";
+    EXPECT_TRUE(remainderEntriesOf(0.05, kGgxLookups, base).empty());
     EXPECT_TRUE(remainderEntries(scene, base, softBox).empty());
     EXPECT_TRUE(remainderEntries(scene, base, {}).empty()) << "no lights: the whole stack is the remainder";
     EXPECT_NEAR(remainderReach(scene, base), 0.36, 1e-6);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mipgloss::ui {
 
@@ -202,12 +203,21 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, lookups, base);
     gl->glUniform1i(u.specularHeld, specularHeld ? 1 : 0);
     gl->glUniform1i(u.coatHeld, coatHeld ? 1 : 0);
+    // A layer reading the remainder reads its entries from ggxHeadOnEntry on (remainderEntriesOf):
+    // its lookups' range is that one.
     const double widest = environment ? widestLight(environment->lights) : 0.0;
-    auto readsRemainder = [&](bool held, double roughness, glm::ivec2 range) {
-        return held && ggxReadsRemainder(roughness, lookups, base, false, widest) && remainderHolds(range.x, range.y);
+    auto remainderRange = [&](bool held, double roughness) -> std::optional<glm::ivec2> {
+        if (!held || !ggxReadsRemainder(roughness, lookups, base, false, widest)) return std::nullopt;
+        const std::vector<int> range = remainderEntriesOf(roughness, lookups, base);
+        if (range.empty() || !remainderHolds(range.front(), range.back())) return std::nullopt;
+        return glm::ivec2(range.front(), range.back());
     };
-    gl->glUniform1i(u.specularRemainder, readsRemainder(specularHeld, m.layers.roughness, specularEntries) ? 1 : 0);
-    gl->glUniform1i(u.coatRemainder, readsRemainder(coatHeld, m.layers.coatRoughness, coatEntries) ? 1 : 0);
+    const auto specularRemainder = remainderRange(specularHeld, m.layers.roughness);
+    const auto coatRemainder = remainderRange(coatHeld, m.layers.coatRoughness);
+    gl->glUniform1i(u.specularRemainder, specularRemainder ? 1 : 0);
+    gl->glUniform1i(u.coatRemainder, coatRemainder ? 1 : 0);
+    if (specularRemainder) gl->glUniform2i(u.specularEntries, specularRemainder->x, specularRemainder->y);
+    if (coatRemainder) gl->glUniform2i(u.coatEntries, coatRemainder->x, coatRemainder->y);
     const bool diffuse = !diffuseIrradiance && plan.diffuse.readsLobeStack && stackServes(plan.diffuse.exponent);
     auto set1i = [&](int location, bool v) { gl->glUniform1i(location, v ? 1 : 0); };
     auto set1f = [&](int location, double v) { gl->glUniform1f(location, static_cast<float>(v)); };

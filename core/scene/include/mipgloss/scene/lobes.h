@@ -103,14 +103,20 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize);
 // wider neighbour, ascending. With a roughness map (`mapped`), any roughness up to it: every entry
 // from firstEntryMadeAhead on. None for the mirror (roughness 0).
 std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool mapped = false);
+// The stack entry holding the sharpest lookup of a GGX layer seen head-on (its sharper
+// neighbour), when the stack makes it (from firstEntryMadeAhead on); −1 otherwise (near-mirror
+// layers: sharper than the stack).
+int ggxHeadOnEntry(double roughness, int lookups, int baseSize);
 // Whether the stack holds such a layer's lookups, so they need never read the chain: true when
-// its sharpest lookup head-on is no sharper than the first entry the stack makes
-// (firstEntryMadeAhead); false with a roughness map (any fragment may be sharper) and for
-// near-mirror layers. object.frag's readGgx then reads the atlas alone, in its own loop: a lookup
-// sharper than the layer's first entry (toward grazing, where the GGX lobe is squeezed across the
-// plane of incidence, 2α·N·v) reads that entry, a lobe no wider than the stack's sharpest
-// (docs/material-truth.md measures what that costs at grazing).
+// ggxHeadOnEntry is made; false with a roughness map (any fragment may be sharper). object.frag's
+// readGgx then reads the atlas alone, in its own loop: a lookup sharper than the layer's first
+// entry (toward grazing, where the GGX lobe is squeezed across the plane of incidence, 2α·N·v)
+// reads that entry.
 bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped = false);
+// The remainder entries such a layer reads: ggxEntries from ggxHeadOnEntry on (none when not
+// held). Its lookups sharper than that, toward grazing, read that entry: the sharp entries
+// (faces up to 512, seconds each) are made once, for the whole environment, not twice.
+std::vector<int> remainderEntriesOf(double roughness, int lookups, int baseSize);
 // The widest of the lights (their radius ρ, bright_lights.h); 0 for none.
 double widestLight(const std::vector<PointLight>& lights);
 // Whether a GGX layer's lookups read the remainder entries (the environment without its bright
@@ -126,8 +132,9 @@ bool ggxReadsRemainder(double roughness, int lookups, int baseSize, bool mapped,
 // The widest α of the scene's GGX layers that would read the remainder if the lights were narrow
 // enough (every condition of ggxReadsRemainder but the lights'); 0 when none would.
 double remainderReach(const Scene& scene, int baseSize);
-// The remainder entries the scene's GGX layers read (ascending indices, not keys): ggxEntries of
-// every visible layer that reads them (ggxReadsRemainder), when the display shades the lights.
+// The remainder entries the scene's GGX layers read (ascending indices, not keys):
+// remainderEntriesOf every visible layer that reads them (ggxReadsRemainder), when the display
+// shades the lights.
 std::vector<int> remainderEntries(const Scene& scene, int baseSize, const std::vector<PointLight>& lights);
 // The first entry of a face up to kGrazingLargestFace: where what is made ahead begins.
 int firstEntryMadeAhead(int baseSize);
