@@ -20,8 +20,8 @@ uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStac
 uniform vec4 uRemainderEntry[STACK_SLOTS];
 uniform bool uSpecularRemainder;
 uniform bool uCoatRemainder;
-// Whether the stack holds every lookup's lobe of each layer (lobes.h, ggxLookupsHeld): its lookups
-// then read the atlas alone (object.frag, readGgx).
+// Whether the stack holds each layer's lookups (lobes.h, ggxLookupsHeld: its sharpest head-on):
+// its lookups then read the atlas alone (object.frag, readGgx), a sharper one its first entry.
 uniform bool uSpecularHeld;
 uniform bool uCoatHeld;
 // The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
