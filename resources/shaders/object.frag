@@ -81,9 +81,10 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
 //
 // Two loops, of which a draw runs one (the other counts to 0): a CPU rasterizer runs both sides
 // of every branch for every fragment (llvmpipe: masked SIMD), but no loop that no fragment enters.
-//   held    (the stack holds every lookup's lobe: lobes.h, ggxLookupsHeld) one atlas read per
-//           lookup, of the remainder's entry (bright_lights.h: no lights in it) when made, else of
-//           the whole environment's less what the lights put in that lobe;
+//   held    (the stack holds the layer's lookups head-on: lobes.h, ggxLookupsHeld) one atlas read
+//           per lookup, a sharper one (toward grazing) of the range's first entry; of the
+//           remainder's entry (bright_lights.h: no lights in it) when read, else of the whole
+//           environment's less what the lights put in that lobe;
 //   else    per lookup the stack's entry where it holds it, else the chain at the level holding
 //           the lobe, less the lights' share: an entry still being made, a lobe sharper than the
 //           stack's first (near-mirror layers), a roughness map's fragments.

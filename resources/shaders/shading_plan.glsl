@@ -55,7 +55,8 @@ struct LayerRead {
     vec3 normal, view;       // READ_GGX: N and v in the environment's frame
     float alpha;             // READ_GGX: roughness²
     ivec2 entries;           // READ_GGX: the stack entries its lookups read (lobes.h, ggxEntries)
-    bool held;               // READ_GGX: the stack holds every lookup's lobe (lobes.h, ggxLookupsHeld)
+    bool held;               // READ_GGX: the stack holds its lookups (lobes.h, ggxLookupsHeld; object_pass.cpp
+                             // sets it only where the stack is read)
     bool remainder;          // READ_GGX, held: and the remainder's entries, without the bright lights
 };
 
@@ -99,8 +100,8 @@ LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughn
                   bool held, bool remainder) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
     g.entries = entries;
-    g.held = useStack && held;
-    g.remainder = g.held && remainder;
+    g.held = held;
+    g.remainder = remainder;
     g.normal = normal;
     g.view = view;
     g.alpha = roughness * roughness;

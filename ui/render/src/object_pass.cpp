@@ -203,17 +203,17 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, lookups, base);
     gl->glUniform1i(u.specularHeld, specularHeld ? 1 : 0);
     gl->glUniform1i(u.coatHeld, coatHeld ? 1 : 0);
-    // A layer reading the remainder reads its entries from ggxHeadOnEntry on (remainderEntriesOf):
-    // its lookups' range is that one.
+    // A layer reading the remainder reads its entries from ggxHeadOnEntry to its last
+    // (remainderEntriesOf, without computing ggxEntries again each draw): its lookups' range.
     const double widest = environment ? widestLight(environment->lights) : 0.0;
-    auto remainderRange = [&](bool held, double roughness) -> std::optional<glm::ivec2> {
+    auto remainderRange = [&](bool held, double roughness, glm::ivec2 entries) -> std::optional<glm::ivec2> {
         if (!held || !ggxReadsRemainder(roughness, lookups, base, false, widest)) return std::nullopt;
-        const std::vector<int> range = remainderEntriesOf(roughness, lookups, base);
-        if (range.empty() || !remainderHolds(range.front(), range.back())) return std::nullopt;
-        return glm::ivec2(range.front(), range.back());
+        const glm::ivec2 range(ggxHeadOnEntry(roughness, lookups, base), entries.y);
+        if (!remainderHolds(range.x, range.y)) return std::nullopt;
+        return range;
     };
-    const auto specularRemainder = remainderRange(specularHeld, m.layers.roughness);
-    const auto coatRemainder = remainderRange(coatHeld, m.layers.coatRoughness);
+    const auto specularRemainder = remainderRange(specularHeld, m.layers.roughness, specularEntries);
+    const auto coatRemainder = remainderRange(coatHeld, m.layers.coatRoughness, coatEntries);
     gl->glUniform1i(u.specularRemainder, specularRemainder ? 1 : 0);
     gl->glUniform1i(u.coatRemainder, coatRemainder ? 1 : 0);
     if (specularRemainder) gl->glUniform2i(u.specularEntries, specularRemainder->x, specularRemainder->y);
