@@ -26,6 +26,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -33,14 +34,16 @@ namespace mipgloss::app {
 
 const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]... [--env-sizes 128,256] [--sizes 384,96]
                        [--lookups 4,8,16] [--lights on|off|both] [--roughness 0.05,0.2,0.3,0.6,0.7,1]
-                       [--pixels P] [--frames F]
+                       [--pixels P] [--frames F] [--truth-at area|centre] [--dump DIR]
 
 bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
   0.95, 0.64, 0.54, at each roughness), drawn by the renderer with K lookups per GGX layer, against
   the glTF 2.0 BRDF integrated over the same decoded environment (material_truth.h) at P pixels of
   the object (every k-th), and the exact Karis split sum on the same pixels. Per row: relative RMS
   over the object, the worst N·v bin of width 0.2, the median pixel's relative error, for the picture
-  and for Karis, and the frame time (ms, F frames, the material alone on llvmpipe or the GPU).
+  and for Karis, the frame time (ms, F frames, the material alone on llvmpipe or the GPU), Σ shown /
+  Σ truth, and the worst pixel's share of the picture's squared error (top1: near 1, one pixel is
+  the RMS).
   --env FILE        an environment, repeatable (required)
   --env-sizes LIST  base face sizes (default 128,256)
   --sizes LIST      image sides: the sphere fills the image (default 384,96)
@@ -49,6 +52,10 @@ bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0
   --roughness LIST  roughness values (default 0.05,0.2,0.3,0.6,0.7,1)
   --pixels P        truth pixels per case (default 800)
   --frames F        timed frames per row (default 5)
+  --truth-at WHERE  each pixel's truth over its area (default: the mean over S×S positions, as a
+                    path tracer's box filter, S from the change of R across it against the lobe),
+                    or at its centre ("centre")
+  --dump DIR        each row's pixels as CSV in DIR (x, y, N·v, shown, truth, Karis; RGB each)
 )";
 
 namespace {
@@ -71,6 +78,9 @@ std::vector<double> parseNumbers(const std::string& flag, const std::string& tex
 
 struct Errors {
     double rms = 0.0, worstBin = 0.0, median = 0.0, ratio = 0.0;  // ratio: Σ shown / Σ truth (luminance)
+    // The worst pixel's share of the squared error: near 1, the RMS is that one pixel (a light
+    // reflected at the rim), and whether the sample holds it.
+    double worstShare = 0.0;
 };
 
 // Relative RMS over the pixels, the worst N·v bin of width 0.2, the median relative error.
@@ -79,10 +89,12 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
     Errors e;
     double num = 0.0, den = 0.0;
     double binNum[5] = {}, binDen[5] = {};
+    double worst = 0.0;
     std::vector<double> each;
     for (std::size_t i = 0; i < shown.size(); ++i) {
         const glm::dvec3 d = shown[i] - truth[i];
         const double dd = glm::dot(d, d), tt = glm::dot(truth[i], truth[i]);
+        worst = std::max(worst, dd);
         num += dd;
         den += tt;
         const int bin = std::clamp(static_cast<int>(cosView[i] / 0.2), 0, 4);
@@ -91,6 +103,7 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
         if (tt > 0.0) each.push_back(std::sqrt(dd / tt));
     }
     e.rms = den > 0.0 ? std::sqrt(num / den) : 0.0;
+    e.worstShare = num > 0.0 ? worst / num : 0.0;
     double sumShown = 0.0, sumTruth = 0.0;
     for (std::size_t i = 0; i < shown.size(); ++i) {
         sumShown += shown[i].x + shown[i].y + shown[i].z;
@@ -104,6 +117,77 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
         e.median = each[each.size() / 2];
     }
     return e;
+}
+
+// One row's pixels, for looking at where the error is: DIR/map-face-side-material-K.csv.
+void dumpPixels(const std::string& folder, const std::string& map, int face, int side, const std::string& material,
+                int lookups, int width, const std::vector<std::size_t>& sample, const std::vector<double>& cosView,
+                const std::vector<glm::dvec3>& shown, const std::vector<glm::dvec3>& truth,
+                const std::vector<glm::dvec3>& karis) {
+    std::filesystem::create_directories(folder);
+    std::string name = map + "-" + std::to_string(face) + "-" + std::to_string(side) + "-" + material + "-" +
+                       std::to_string(lookups) + ".csv";
+    std::replace(name.begin(), name.end(), ' ', '_');
+    const std::filesystem::path path = std::filesystem::path(folder) / name;
+    std::FILE* out = std::fopen(path.string().c_str(), "w");
+    if (!out) throw std::runtime_error("bench truth: cannot write " + path.string());
+    std::fprintf(out, "x,y,cos_view,shown_r,shown_g,shown_b,truth_r,truth_g,truth_b,karis_r,karis_g,karis_b\n");
+    for (std::size_t j = 0; j < sample.size(); ++j) {
+        const std::size_t i = sample[j];
+        std::fprintf(out, "%zu,%zu,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", i % static_cast<std::size_t>(width),
+                     i / static_cast<std::size_t>(width), cosView[j], shown[j].x, shown[j].y, shown[j].z, truth[j].x,
+                     truth[j].y, truth[j].z, karis[j].x, karis[j].y, karis[j].z);
+    }
+    std::fclose(out);
+}
+
+// A pixel's normal and view at its centre (from the AOV: N, and R = reflect(−v, N)), and their
+// change to the next pixel right and down: central differences, one-sided at the object's edge,
+// none where neither neighbour is on it (the shader's dFdx/dFdy, from the same quads).
+struct PixelGeometry {
+    glm::dvec3 n{0.0, 0.0, 1.0}, v{0.0, 0.0, 1.0};
+    glm::dvec3 dndx{0.0}, dndy{0.0}, dvdx{0.0}, dvdy{0.0};
+};
+
+PixelGeometry pixelGeometry(const ui::AovImage& aov, std::size_t i) {
+    const auto normalAt = [&](std::size_t k) { return glm::normalize(glm::dvec3(aov.diffuse.direction[k])); };
+    const auto viewAt = [&](std::size_t k) {
+        const glm::dvec3 n = normalAt(k), r = glm::normalize(glm::dvec3(aov.direction[k]));
+        return glm::normalize(2.0 * glm::dot(n, r) * n - r);
+    };
+    const int w = aov.width, h = aov.height;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+    const auto on = [&](int px, int py) {
+        return px >= 0 && py >= 0 && px < w && py < h &&
+               aov.exponent[static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px)] != 0.0f;
+    };
+    const auto index = [&](int px, int py) { return static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px); };
+    PixelGeometry g;
+    g.n = normalAt(i);
+    g.v = viewAt(i);
+    const auto change = [&](int ax, int ay, glm::dvec3& dn, glm::dvec3& dv) {
+        const bool ahead = on(x + ax, y + ay), behind = on(x - ax, y - ay);
+        if (ahead && behind) {
+            dn = 0.5 * (normalAt(index(x + ax, y + ay)) - normalAt(index(x - ax, y - ay)));
+            dv = 0.5 * (viewAt(index(x + ax, y + ay)) - viewAt(index(x - ax, y - ay)));
+        } else if (ahead) {
+            dn = normalAt(index(x + ax, y + ay)) - g.n;
+            dv = viewAt(index(x + ax, y + ay)) - g.v;
+        } else if (behind) {
+            dn = g.n - normalAt(index(x - ax, y - ay));
+            dv = g.v - viewAt(index(x - ax, y - ay));
+        }
+    };
+    change(1, 0, g.dndx, g.dvdx);
+    change(0, 1, g.dndy, g.dvdy);
+    return g;
+}
+
+// Positions per side for a pixel's mean: enough that R moves less than about half the lobe's
+// width between them (R turns twice as fast as N, and with v), at most 4 (16 positions).
+int areaSubdivisions(const PixelGeometry& g, double alpha) {
+    const double turn = std::max(glm::length(2.0 * g.dndx - g.dvdx), glm::length(2.0 * g.dndy - g.dvdy));
+    return std::clamp(static_cast<int>(std::ceil(2.0 * turn / alpha)), 1, 4);
 }
 
 Scene sphereScene(const Layers& layers, int lookups, bool lights) {
@@ -129,6 +213,8 @@ int runTruthBench(Args args) {
     std::vector<std::string> envs;
     std::vector<double> faceSizes{128, 256}, sizes{384, 96}, lookups{4, 8, 16}, roughness{0.05, 0.2, 0.3, 0.6, 0.7, 1.0};
     int pixels = 800, frames = 5;
+    std::string dumpFolder;
+    bool truthOverArea = true;
     std::vector<bool> lightsModes{true};
     while (!args.empty()) {
         const std::string a = args.next();
@@ -145,13 +231,20 @@ int runTruthBench(Args args) {
         } else if (a == "--roughness") roughness = parseNumbers(a, args.value(a), 0.0, 1.0);
         else if (a == "--pixels") pixels = static_cast<int>(parseNumbers(a, args.value(a), 10, 1e6).front());
         else if (a == "--frames") frames = static_cast<int>(parseNumbers(a, args.value(a), 1, 1000).front());
+        else if (a == "--dump") dumpFolder = args.value(a);
+        else if (a == "--truth-at") {
+            const std::string v = args.value(a);
+            if (v == "area") truthOverArea = true;
+            else if (v == "centre") truthOverArea = false;
+            else throw UsageError("--truth-at is area or centre, got '" + v + "'");
+        }
         else throw UsageError("bench truth: unknown option '" + a + "'");
     }
     if (envs.empty()) throw UsageError("bench truth needs --env FILE");
     OffscreenSession session("mipgloss", "bench truth");
     ui::OffscreenRenderer& renderer = session.renderer();
     std::printf("%-14s %5s %5s %-22s %3s | %7s %7s %7s | %7s %7s %7s | %8s\n", "map", "face", "image", "material", "K",
-                "rms%", "bin%", "med%", "karis%", "kbin%", "kmed%", "ms/frame  shown/truth");
+                "rms%", "bin%", "med%", "karis%", "kbin%", "kmed%", "ms/frame  shown/truth  top1");
     for (const std::string& file : envs) {
         const std::string map = std::filesystem::path(file).stem().string();
         for (const double faceSize : faceSizes) {
@@ -209,14 +302,24 @@ int runTruthBench(Args args) {
                                 truth.resize(sample.size());
                                 karis.resize(sample.size());
                                 cosView.resize(sample.size());
+                                const double alpha = std::max(1e-3, static_cast<double>(layers.roughness * layers.roughness));
                                 parallelFor(0, static_cast<int>(sample.size()), [&](int j) {
-                                    const std::size_t i = sample[static_cast<std::size_t>(j)];
-                                    const glm::dvec3 n = glm::normalize(glm::dvec3(aov.diffuse.direction[i]));
-                                    const glm::dvec3 rr = glm::normalize(glm::dvec3(aov.direction[i]));
-                                    const glm::dvec3 v = glm::normalize(2.0 * glm::dot(n, rr) * n - rr);
-                                    truth[static_cast<std::size_t>(j)] = materialTruth(tree, layers, n, v).total();
-                                    karis[static_cast<std::size_t>(j)] = karisSplitSum(tree, layers, n, v).total();
-                                    cosView[static_cast<std::size_t>(j)] = std::clamp(glm::dot(n, v), 0.0, 1.0);
+                                    const PixelGeometry g = pixelGeometry(aov, sample[static_cast<std::size_t>(j)]);
+                                    const int s = truthOverArea ? areaSubdivisions(g, alpha) : 1;
+                                    glm::dvec3 t(0.0), kk(0.0);
+                                    for (int sy = 0; sy < s; ++sy)
+                                        for (int sx = 0; sx < s; ++sx) {
+                                            const double ox = (sx + 0.5) / s - 0.5, oy = (sy + 0.5) / s - 0.5;
+                                            const glm::dvec3 n = glm::normalize(g.n + ox * g.dndx + oy * g.dndy);
+                                            glm::dvec3 v = glm::normalize(g.v + ox * g.dvdx + oy * g.dvdy);
+                                            // Below the surface only by the linearization at a rim.
+                                            if (glm::dot(n, v) < 1e-4) v = glm::normalize(v + (1e-4 - glm::dot(n, v)) * n);
+                                            t += materialTruth(tree, layers, n, v).total();
+                                            kk += karisSplitSum(tree, layers, n, v).total();
+                                        }
+                                    truth[static_cast<std::size_t>(j)] = t / double(s * s);
+                                    karis[static_cast<std::size_t>(j)] = kk / double(s * s);
+                                    cosView[static_cast<std::size_t>(j)] = std::clamp(glm::dot(g.n, g.v), 0.0, 1.0);
                                 });
                             }
                             std::vector<glm::dvec3> shown;
@@ -225,11 +328,14 @@ int runTruthBench(Args args) {
                             char name[64];
                             std::snprintf(name, sizeof name, "%s r %.2f %s", metal ? "metal" : "dielectric", r,
                                           lightsOn ? "L" : "-");
-                            std::printf("%-14s %5d %5d %-22s %3d | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f\n",
+                            std::printf("%-14s %5d %5d %-22s %3d | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f  %5.2f\n",
                                         map.c_str(), static_cast<int>(faceSize), side, name, static_cast<int>(k),
                                         100 * e.rms, 100 * e.worstBin, 100 * e.median, 100 * ke.rms, 100 * ke.worstBin,
-                                        100 * ke.median, ms, e.ratio);
+                                        100 * ke.median, ms, e.ratio, e.worstShare);
                             std::fflush(stdout);
+                            if (!dumpFolder.empty())
+                                dumpPixels(dumpFolder, map, static_cast<int>(faceSize), side, name, static_cast<int>(k),
+                                           w, sample, cosView, shown, truth, karis);
                         }
                     }
         }

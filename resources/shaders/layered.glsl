@@ -129,23 +129,45 @@ vec3 lightsThrough(vec3 d, float n) {
     return sum;
 }
 
-// The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j. A light
-// is not a point: its texels span `radius`, so its D is GGX's widened by it, α'² = α² + (radius/2)²
-// (angles of the reflected direction are twice the half vector's), which keeps D normalized.
+// GGX's D averaged over a light's disc (bright_lights.h, discAveragedGgx: the derivation and the
+// tests): P22's mean over the disc in slope space, the point-to-parallel-disc form factor.
+float discDistribution(float alpha, float cosHalf, float radius) {
+    float c = max(cosHalf, 1e-3), c2 = c * c;
+    float slope2 = max(1.0 - c2, 0.0) / c2;
+    float halfAngle = 0.5 * radius;
+    float r = max(min(halfAngle, 0.5 * c) / (c * sqrt(c)), 1e-6);
+    float a2 = alpha * alpha;
+    float a = a2 + slope2 - r * r;
+    float b = 4.0 * a2 * r * r;
+    float q = sqrt(a * a + b);
+    // 1 − a/q without its cancellation when a > 0.
+    float inside = 0.5 * (a > 0.0 ? b / (q * (q + a)) : 1.0 - a / q);
+    return inside / (PI * r * r * c2 * c2);
+}
+
+// A light's (N·l)⁺ averaged over its disc, which the horizon may cut (bright_lights.h,
+// horizonCosine).
+float horizonCosine(float cosLight, float radius) {
+    if (cosLight >= radius) return cosLight;
+    if (cosLight <= -radius) return 0.0;
+    float u = cosLight / radius, w = sqrt(max(0.0, 1.0 - u * u));
+    return radius * (u * (0.5 + (u * w + asin(u)) / PI) + (2.0 / (3.0 * PI)) * w * w * w);
+}
+
+// The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j, D GGX's
+// averaged over the light's disc (discDistribution), V and F at its centre.
 vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0, float f90) {
     vec3 sum = vec3(0.0);
     float cv = dot(normal, view);
     if (cv <= 0.0) return sum;
+    float a2 = alpha * alpha;
     for (int j = 0; j < uLightCount; ++j) {
         vec3 l = uLightDirection[j].xyz;
         float radius = uLightDirection[j].w;
-        float a2 = alpha * alpha + 0.25 * radius * radius;
-        float cl = dot(normal, l);
+        float cl = horizonCosine(dot(normal, l), radius);
         if (cl <= 0.0) continue;
         vec3 h = normalize(l + view);
-        float ch = max(dot(normal, h), 0.0);
-        float d = ch * ch * (a2 - 1.0) + 1.0;
-        float distribution = a2 / (PI * d * d);
+        float distribution = discDistribution(alpha, max(dot(normal, h), 0.0), radius);
         float visibility = 0.5 / (cl * sqrt(cv * cv * (1.0 - a2) + a2) + cv * sqrt(cl * cl * (1.0 - a2) + a2));
         float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
         vec3 fresnel = f0 + (vec3(f90) - f0) * (m * m * m * m * m);
@@ -161,7 +183,7 @@ void lightsDiffuse(vec3 normal, vec3 view, vec3 f0, float f90, out vec3 exact, o
     lambert = vec3(0.0);
     for (int j = 0; j < uLightCount; ++j) {
         vec3 l = uLightDirection[j].xyz;
-        float cl = dot(normal, l);
+        float cl = horizonCosine(dot(normal, l), uLightDirection[j].w);
         if (cl <= 0.0) continue;
         vec3 h = normalize(l + view);
         float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);

@@ -96,4 +96,27 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor, int max
     return lights;
 }
 
+double discAveragedGgx(double alpha, double cosHalf, double radius) {
+    constexpr double kPi = 3.14159265358979323846;
+    const double c = std::max(cosHalf, 1e-3), c2 = c * c;
+    const double slope2 = std::max(1.0 - c2, 0.0) / c2;
+    const double halfAngle = 0.5 * radius;
+    const double r = std::max(std::min(halfAngle, 0.5 * c) / (c * std::sqrt(c)), 1e-6);
+    const double a2 = alpha * alpha;
+    const double a = a2 + slope2 - r * r;
+    const double b = 4.0 * a2 * r * r;
+    const double q = std::sqrt(a * a + b);
+    // 1 − a/q without its cancellation when a > 0.
+    const double inside = 0.5 * (a > 0.0 ? b / (q * (q + a)) : 1.0 - a / q);
+    return inside / (kPi * r * r * c2 * c2);
+}
+
+double horizonCosine(double cosLight, double radius) {
+    constexpr double kPi = 3.14159265358979323846;
+    if (cosLight >= radius) return cosLight;
+    if (cosLight <= -radius) return 0.0;
+    const double u = cosLight / radius, w = std::sqrt(std::max(0.0, 1.0 - u * u));
+    return radius * (u * (0.5 + (u * w + std::asin(u)) / kPi) + (2.0 / (3.0 * kPi)) * w * w * w);
+}
+
 }  // namespace mipgloss
