@@ -145,6 +145,42 @@ float discDistribution(float alpha, float cosHalf, float radius) {
     return inside / (PI * r * r * c2 * c2);
 }
 
+// GGX's D averaged over a light's disc as the ellipse its half vectors make (bright_lights.h,
+// lightAveragedGgx: the derivation and the tests): the disc of its area where the ellipse is
+// round, lost in the lobe or far from the peak, else P22 over the ellipse as an equal-area octagon in slope space, by
+// Lambert's formula for the form factor from the point α above it. A loop that no fragment away
+// from grazing enters (a CPU rasterizer runs both sides of a branch, not a loop nobody enters).
+// (t, bt): any tangent frame of n, the slope plane's axes.
+float lightDistribution(float alpha, vec3 n, vec3 t, vec3 bt, vec3 v, vec3 l, vec3 h, float radius) {
+    float cosHalf = dot(n, h), viewDotHalf = max(dot(v, h), 1e-3);
+    float disc = discDistribution(alpha, max(cosHalf, 0.0), radius * inversesqrt(viewDotHalf));
+    float a = 0.52695 * radius;  // ½ρ·√(π/2√2): the octagon of the ellipse's area
+    float b = a / viewDotHalf;
+    float c2 = max(cosHalf * cosHalf, 1e-6);
+    float longRadius = b / c2;
+    // |slope of h|² = (1 − cos²)/cos²; beyond longRadius + 2α, the tail.
+    float reach = longRadius + 2.0 * alpha;
+    bool elliptic = viewDotHalf < 0.77 && cosHalf > 1e-3 && longRadius >= 0.5 * alpha && (1.0 - c2) <= reach * reach * c2;
+    // Vertices 0…8 (the 8th is the 0th again), an edge from each to the one before: 9 or 0
+    // passes, so no fragment away from grazing enters the loop.
+    int vertices = elliptic ? 9 : 0;
+    vec3 inPlane = normalize(l - v), across = normalize(cross(h, l - v));
+    float flux = 0.0;
+    vec3 previous = vec3(0.0);
+    for (int k = 0; k < vertices; ++k) {
+        float phi = 0.78539816 * float(k);
+        vec3 d = normalize(h + a * cos(phi) * inPlane + b * sin(phi) * across);
+        vec2 s = vec2(dot(d, t), dot(d, bt)) / max(dot(d, n), 1e-3);
+        vec3 w = normalize(vec3(s, -alpha));
+        vec3 c = cross(previous, w);
+        float sine = length(c);
+        if (k > 0 && sine > 0.0) flux += atan(sine, dot(previous, w)) * (c.z / sine);
+        previous = w;
+    }
+    float formFactor = abs(flux) / (2.0 * PI);
+    return elliptic ? formFactor / (cosHalf * 2.82842712 * a * b) : disc;
+}
+
 // A light's (N·l)⁺ averaged over its disc, which the horizon may cut (bright_lights.h,
 // horizonCosine).
 float horizonCosine(float cosLight, float radius) {
@@ -155,19 +191,21 @@ float horizonCosine(float cosLight, float radius) {
 }
 
 // The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j, D GGX's
-// averaged over the light's disc (discDistribution), V and F at its centre.
+// averaged over the light's disc (lightDistribution), V and F at its centre.
 vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0, float f90) {
     vec3 sum = vec3(0.0);
     float cv = dot(normal, view);
     if (cv <= 0.0) return sum;
     float a2 = alpha * alpha;
+    vec3 t = normalize(abs(normal.x) < 0.9 ? cross(normal, vec3(1.0, 0.0, 0.0)) : cross(normal, vec3(0.0, 1.0, 0.0)));
+    vec3 bt = cross(normal, t);
     for (int j = 0; j < uLightCount; ++j) {
         vec3 l = uLightDirection[j].xyz;
         float radius = uLightDirection[j].w;
         float cl = horizonCosine(dot(normal, l), radius);
         if (cl <= 0.0) continue;
         vec3 h = normalize(l + view);
-        float distribution = discDistribution(alpha, max(dot(normal, h), 0.0), radius);
+        float distribution = lightDistribution(alpha, normal, t, bt, view, l, h, radius);
         float visibility = 0.5 / (cl * sqrt(cv * cv * (1.0 - a2) + a2) + cv * sqrt(cl * cl * (1.0 - a2) + a2));
         float m = 1.0 - clamp(dot(view, h), 0.0, 1.0);
         vec3 fresnel = f0 + (vec3(f90) - f0) * (m * m * m * m * m);

@@ -119,4 +119,52 @@ double horizonCosine(double cosLight, double radius) {
     return radius * (u * (0.5 + (u * w + std::asin(u)) / kPi) + (2.0 / (3.0 * kPi)) * w * w * w);
 }
 
+double lightAveragedGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l, double radius) {
+    constexpr double kPi = 3.14159265358979323846;
+    const glm::dvec3 sum = l + v;
+    const double length = glm::length(sum);
+    if (length < 1e-6) return 0.0;
+    const glm::dvec3 h = sum / length;
+    const double cosHalf = glm::dot(n, h), viewDotHalf = std::max(glm::dot(v, h), 1e-3);
+    // The ellipse as the disc of its area where its shape is lost in the lobe or far from it.
+    const double disc = discAveragedGgx(alpha, cosHalf, radius / std::sqrt(viewDotHalf));
+    if (viewDotHalf >= 0.77 || cosHalf <= 1e-3 || radius <= 0.0) return disc;
+    // The ellipse's axes about h: in the plane of l and v (l − v ⟂ h), and across it.
+    const glm::dvec3 across0 = glm::cross(h, l - v);
+    if (glm::length(across0) < 1e-9) return disc;
+    const glm::dvec3 inPlane = glm::normalize(l - v), across = glm::normalize(across0);
+    // Radii scaled so the octagon has the ellipse's area (π vs 2√2).
+    const double scale = std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
+    const double a = scale * 0.5 * radius, b = scale * 0.5 * radius / viewDotHalf;
+    // Slope space about n.
+    const glm::dvec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0)));
+    const glm::dvec3 bt = glm::cross(n, t);
+    const auto slopeOf = [&](const glm::dvec3& d) {
+        const double z = std::max(glm::dot(d, n), 1e-3);
+        return glm::dvec2(glm::dot(d, t), glm::dot(d, bt)) / z;
+    };
+    const glm::dvec2 centre = slopeOf(h);
+    // The ellipse's long radius in slope space: below half the lobe's α the light's shape is
+    // lost in the lobe, round or not; beyond it and 2α from the peak, the tail.
+    const double longRadius = b / (cosHalf * cosHalf);
+    if (longRadius < 0.5 * alpha || glm::length(centre) > longRadius + 2.0 * alpha) return disc;
+    glm::dvec3 w[8];
+    for (int k = 0; k < 8; ++k) {
+        const double phi = 2.0 * kPi * k / 8.0;
+        const glm::dvec2 s = slopeOf(glm::normalize(h + a * std::cos(phi) * inPlane + b * std::sin(phi) * across));
+        w[k] = glm::normalize(glm::dvec3(s, -alpha));
+    }
+    double flux = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p = w[k], q = w[(k + 1) % 8];
+        const glm::dvec3 c = glm::cross(p, q);
+        const double sine = glm::length(c);
+        if (sine <= 0.0) continue;
+        flux += std::atan2(sine, glm::dot(p, q)) * (c.z / sine);
+    }
+    const double formFactor = std::abs(flux) / (2.0 * kPi);
+    const double solidAngle = 2.0 * std::sqrt(2.0) * a * b;
+    return formFactor / (cosHalf * solidAngle);
+}
+
 }  // namespace mipgloss
