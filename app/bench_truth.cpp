@@ -254,11 +254,9 @@ int runTruthBench(Args args) {
             const auto env = std::make_shared<const PreparedEnvironment>(prepareEnvironment(settings, ChainNeeds{16, true, 1.0}));
             const RadianceTree tree(*env->base);
             {
-                double widest = 0.0, energy = 0.0, total = 0.0;
-                for (const PointLight& l : env->lights) {
-                    widest = std::max(widest, static_cast<double>(l.radius));
-                    energy += l.energy.g;
-                }
+                double energy = 0.0, total = 0.0;
+                for (const PointLight& l : env->lights) energy += l.energy.g;
+                const double widest = widestLight(env->lights);
                 total = tree.totalEnergy().y;
                 std::printf("# %s at %d²: %zu bright lights (luminance over %.3g), %.1f %% of the energy, the widest "
                             "%.4f rad\n",

@@ -161,18 +161,13 @@ namespace {
 // `none` (--no-stack).
 std::vector<std::shared_ptr<const LobeStackEntry>> lobeStackFor(const PreparedEnvironment& environment, const Scene& scene,
                                                           bool everything, bool none) {
-    std::vector<std::shared_ptr<const LobeStackEntry>> lobes;
-    if (none || !environment.filter) return lobes;
-    const int baseSize = environment.filter->baseSize();
-    std::vector<int> indices = lobesInUse(scene, baseSize);
+    if (none || !environment.filter) return {};
+    std::vector<std::shared_ptr<const LobeStackEntry>> lobes = makeStackEntries(environment, scene);
     if (everything) {
-        const std::vector<int> ahead = lobesNear(indices, baseSize);
-        indices.insert(indices.end(), ahead.begin(), ahead.end());
+        const int baseSize = environment.filter->baseSize();
+        for (int index : lobesNear(lobesInUse(scene, baseSize), baseSize))
+            lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
     }
-    for (int index : indices) lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index)));
-    if (environment.remainderFilter)
-        for (int index : remainderEntries(scene, baseSize, environment.lights))
-            lobes.push_back(std::make_shared<const LobeStackEntry>(makeStackEntry(environment, index, true)));
     return lobes;
 }
 

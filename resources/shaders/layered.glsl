@@ -191,14 +191,13 @@ float horizonCosine(float cosLight, float radius) {
 }
 
 // The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j, D GGX's
-// averaged over the light's disc (lightDistribution), V and F at its centre.
-vec3 lightsSpecular(vec3 normal, vec3 view, float alpha, vec3 f0, float f90) {
+// averaged over the light's disc (lightDistribution), V and F at its centre. (t, bt): the layer's
+// tangent frame of `normal` (object.frag, readGgx), the slope plane's axes.
+vec3 lightsSpecular(vec3 normal, vec3 t, vec3 bt, vec3 view, float alpha, vec3 f0, float f90) {
     vec3 sum = vec3(0.0);
     float cv = dot(normal, view);
     if (cv <= 0.0) return sum;
     float a2 = alpha * alpha;
-    vec3 t = normalize(abs(normal.x) < 0.9 ? cross(normal, vec3(1.0, 0.0, 0.0)) : cross(normal, vec3(0.0, 1.0, 0.0)));
-    vec3 bt = cross(normal, t);
     for (int j = 0; j < uLightCount; ++j) {
         vec3 l = uLightDirection[j].xyz;
         float radius = uLightDirection[j].w;

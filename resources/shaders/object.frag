@@ -140,7 +140,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, floa
         weightB += q.weightB;
     }
     vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
-    return split ? lookups + layer * lightsSpecular(r.normal, r.view, r.alpha, f0, f90) : lookups;
+    return split ? lookups + layer * lightsSpecular(r.normal, t, b, r.view, r.alpha, f0, f90) : lookups;
 }
 
 // The diffuse base: its read less the bright lights' Lambert share, weighted, plus the lights

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <tuple>
 
 namespace mipgloss {
@@ -22,6 +23,12 @@ double brightThreshold(const CubeMap& base, double factor) {
                 omega += w;
             }
     return omega > 0.0 ? factor * sum / omega : 0.0;
+}
+
+double widestLight(const std::vector<PointLight>& lights) {
+    double widest = 0.0;
+    for (const PointLight& light : lights) widest = std::max(widest, static_cast<double>(light.radius));
+    return widest;
 }
 
 CubeMap withoutBrightLights(const CubeMap& base, double factor) {
@@ -97,7 +104,6 @@ std::vector<PointLight> brightLights(const CubeMap& base, double factor, int max
 }
 
 double discAveragedGgx(double alpha, double cosHalf, double radius) {
-    constexpr double kPi = 3.14159265358979323846;
     const double c = std::max(cosHalf, 1e-3), c2 = c * c;
     const double slope2 = std::max(1.0 - c2, 0.0) / c2;
     const double halfAngle = 0.5 * radius;
@@ -108,19 +114,18 @@ double discAveragedGgx(double alpha, double cosHalf, double radius) {
     const double q = std::sqrt(a * a + b);
     // 1 − a/q without its cancellation when a > 0.
     const double inside = 0.5 * (a > 0.0 ? b / (q * (q + a)) : 1.0 - a / q);
-    return inside / (kPi * r * r * c2 * c2);
+    return inside / (std::numbers::pi * r * r * c2 * c2);
 }
 
 double horizonCosine(double cosLight, double radius) {
-    constexpr double kPi = 3.14159265358979323846;
     if (cosLight >= radius) return cosLight;
     if (cosLight <= -radius) return 0.0;
     const double u = cosLight / radius, w = std::sqrt(std::max(0.0, 1.0 - u * u));
-    return radius * (u * (0.5 + (u * w + std::asin(u)) / kPi) + (2.0 / (3.0 * kPi)) * w * w * w);
+    constexpr double pi = std::numbers::pi;
+    return radius * (u * (0.5 + (u * w + std::asin(u)) / pi) + (2.0 / (3.0 * pi)) * w * w * w);
 }
 
 double lightAveragedGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l, double radius) {
-    constexpr double kPi = 3.14159265358979323846;
     const glm::dvec3 sum = l + v;
     const double length = glm::length(sum);
     if (length < 1e-6) return 0.0;
@@ -134,7 +139,7 @@ double lightAveragedGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, 
     if (glm::length(across0) < 1e-9) return disc;
     const glm::dvec3 inPlane = glm::normalize(l - v), across = glm::normalize(across0);
     // Radii scaled so the octagon has the ellipse's area (π vs 2√2).
-    const double scale = std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
+    const double scale = std::sqrt(std::numbers::pi / (2.0 * std::sqrt(2.0)));
     const double a = scale * 0.5 * radius, b = scale * 0.5 * radius / viewDotHalf;
     // Slope space about n.
     const glm::dvec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0)));
@@ -150,7 +155,7 @@ double lightAveragedGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, 
     if (longRadius < 0.5 * alpha || glm::length(centre) > longRadius + 2.0 * alpha) return disc;
     glm::dvec3 w[8];
     for (int k = 0; k < 8; ++k) {
-        const double phi = 2.0 * kPi * k / 8.0;
+        const double phi = 2.0 * std::numbers::pi * k / 8.0;
         const glm::dvec2 s = slopeOf(glm::normalize(h + a * std::cos(phi) * inPlane + b * std::sin(phi) * across));
         w[k] = glm::normalize(glm::dvec3(s, -alpha));
     }
@@ -162,7 +167,7 @@ double lightAveragedGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, 
         if (sine <= 0.0) continue;
         flux += std::atan2(sine, glm::dot(p, q)) * (c.z / sine);
     }
-    const double formFactor = std::abs(flux) / (2.0 * kPi);
+    const double formFactor = std::abs(flux) / (2.0 * std::numbers::pi);
     const double solidAngle = 2.0 * std::sqrt(2.0) * a * b;
     return formFactor / (cosHalf * solidAngle);
 }

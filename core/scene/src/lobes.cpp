@@ -198,12 +198,6 @@ LobeStackEntry makeStackEntry(const PreparedEnvironment& environment, int index,
     return lobe;
 }
 
-double widestLight(const std::vector<PointLight>& lights) {
-    double widest = 0.0;
-    for (const PointLight& light : lights) widest = std::max(widest, static_cast<double>(light.radius));
-    return widest;
-}
-
 bool ggxReadsRemainder(double roughness, int lookups, int baseSize, bool mapped, double widestLightRadius) {
     const double alpha = roughness * roughness;
     return alpha >= lightsApartMinAlpha(baseSize) && widestLightRadius <= alpha &&

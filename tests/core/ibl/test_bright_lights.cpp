@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace mipgloss {
 namespace {
@@ -76,14 +77,13 @@ TEST(BrightLights, AnEnvironmentWithoutBrightTexelsIsItsOwnRemainder) {
 // angle, by a polar rule on the tangent plane's exponential map. The brute force
 // discAveragedGgx's closed form stands for.
 double patchMeanOfGgx(double alpha, double theta0, double along, double across) {
-    constexpr double kPi = 3.14159265358979323846;
     const glm::dvec3 h0(std::sin(theta0), 0.0, std::cos(theta0));
     const glm::dvec3 e1(std::cos(theta0), 0.0, -std::sin(theta0)), e2(0.0, 1.0, 0.0);
     double sum = 0.0, weight = 0.0;
     const int rings = 400, spokes = 256;
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < spokes; ++j) {
-            const double s = (i + 0.5) / rings, phi = 2.0 * kPi * (j + 0.5) / spokes;
+            const double s = (i + 0.5) / rings, phi = 2.0 * std::numbers::pi * (j + 0.5) / spokes;
             const double x = s * along * std::cos(phi), y = s * across * std::sin(phi);
             const double t = std::hypot(x, y);
             const glm::dvec3 dir = t > 0.0 ? (x * e1 + y * e2) / t : e1;
@@ -130,22 +130,20 @@ TEST(LightsShape, AveragedOverTheHemisphereTheDiscsLobeKeepsItsEnergy) {
     // ∫ D cos θh dω_h = 1 for GGX; averaging over a disc moves energy, it makes none: within 1 %
     // for lights up to 0.1 rad (the maps' widest: 0.01–0.09), 2.5 % for one of 0.3 rad (the
     // equal-area disc, and the disc kept off the horizon).
-    constexpr double kPi = 3.14159265358979323846;
     for (double alpha : {0.05, 0.3})
         for (double radius : {0.05, 0.1, 0.3}) {
             double sum = 0.0;
             const int steps = 20000;
             for (int i = 0; i < steps; ++i) {
-                const double theta = (i + 0.5) / steps * (kPi / 2);
-                sum += discAveragedGgx(alpha, std::cos(theta), radius) * std::cos(theta) * std::sin(theta) * 2 * kPi *
-                       (kPi / 2) / steps;
+                const double theta = (i + 0.5) / steps * (std::numbers::pi / 2);
+                sum += discAveragedGgx(alpha, std::cos(theta), radius) * std::cos(theta) * std::sin(theta) * 2 * std::numbers::pi *
+                       (std::numbers::pi / 2) / steps;
             }
             EXPECT_NEAR(sum, 1.0, radius <= 0.1 ? 0.01 : 0.025) << "α " << alpha << " ρ " << radius;
         }
 }
 
 TEST(LightsShape, TheHorizonCutsADiscsCosineSmoothly) {
-    constexpr double kPi = 3.14159265358979323846;
     const double radius = 0.05;
     EXPECT_DOUBLE_EQ(horizonCosine(0.3, radius), 0.3);
     EXPECT_DOUBLE_EQ(horizonCosine(-0.06, radius), 0.0);
@@ -156,7 +154,7 @@ TEST(LightsShape, TheHorizonCutsADiscsCosineSmoothly) {
         double sum = 0.0, weight = 0.0;
         for (int i = 0; i < 300; ++i)
             for (int j = 0; j < 256; ++j) {
-                const double t = (i + 0.5) / 300 * radius, phi = 2 * kPi * (j + 0.5) / 256;
+                const double t = (i + 0.5) / 300 * radius, phi = 2 * std::numbers::pi * (j + 0.5) / 256;
                 const glm::dvec3 l = std::cos(t) * c + std::sin(t) * (std::cos(phi) * e1 + std::sin(phi) * e2);
                 sum += std::sin(t) * std::max(l.z, 0.0);
                 weight += std::sin(t);
@@ -168,14 +166,13 @@ TEST(LightsShape, TheHorizonCutsADiscsCosineSmoothly) {
 // GGX's D at the half vector of each direction of a light's disc (radius ρ about l, uniform in
 // solid angle), averaged: what lightAveragedGgx stands for, by a polar rule about l.
 double lightMeanOfGgx(double alpha, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l, double radius) {
-    constexpr double kPi = 3.14159265358979323846;
     const glm::dvec3 e1 = glm::normalize(glm::cross(l, std::abs(l.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
     const glm::dvec3 e2 = glm::cross(l, e1);
     double sum = 0.0, weight = 0.0;
     const int rings = 300, spokes = 300;
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < spokes; ++j) {
-            const double t = (i + 0.5) / rings * radius, phi = 2.0 * kPi * (j + 0.5) / spokes;
+            const double t = (i + 0.5) / rings * radius, phi = 2.0 * std::numbers::pi * (j + 0.5) / spokes;
             const glm::dvec3 d = std::cos(t) * l + std::sin(t) * (std::cos(phi) * e1 + std::sin(phi) * e2);
             const glm::dvec3 h = glm::normalize(d + v);
             sum += std::sin(t) * ggxDistribution(alpha, glm::dot(n, h));

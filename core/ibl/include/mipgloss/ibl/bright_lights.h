@@ -30,6 +30,9 @@ struct PointLight {
 // The lights, brightest first; none for a cube with no texel over the threshold.
 std::vector<PointLight> brightLights(const CubeMap& base, double factor = kBrightFactor, int maxLights = kMaxBrightLights);
 
+// The widest of the lights (their radius ρ); 0 for none.
+double widestLight(const std::vector<PointLight>& lights);
+
 // The luminance above which a texel is bright: factor × the mean luminance.
 double brightThreshold(const CubeMap& base, double factor = kBrightFactor);
 

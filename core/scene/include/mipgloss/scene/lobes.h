@@ -117,8 +117,6 @@ bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped = f
 // held). Its lookups sharper than that, toward grazing, read that entry: the sharp entries
 // (faces up to 512, seconds each) are made once, for the whole environment, not twice.
 std::vector<int> remainderEntriesOf(double roughness, int lookups, int baseSize);
-// The widest of the lights (their radius ρ, bright_lights.h); 0 for none.
-double widestLight(const std::vector<PointLight>& lights);
 // Whether a GGX layer's lookups read the remainder entries (the environment without its bright
 // lights) instead of the whole environment less each light through each lookup. Both give
 // lookups + the lights through the exact BRDF; they differ in where the lights' model (each a disc
