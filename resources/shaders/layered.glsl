@@ -112,6 +112,15 @@ float lookupExponent(float pdf, int count) {
     return isinf(pdf) ? pdf : max(0.0, 2.0 * PI * float(count) * pdf / SAMPLE_SPREAD - 1.0);
 }
 
+// Where lookup lobe n about `light` (frame N = z) reads from: raised toward N until the lobe's
+// half-maximum cone is above the horizon, its azimuth kept (ggx_sampling.h, keptAboveHorizon).
+vec3 keptAboveHorizon(vec3 light, float n) {
+    float lowest = isinf(n) ? -1.0 : sqrt(max(0.0, 1.0 - exp2(-2.0 / max(n, 1e-6))));
+    float across = length(light.xy);
+    vec3 raised = across > 0.0 ? vec3(light.xy * (sqrt(1.0 - lowest * lowest) / across), lowest) : vec3(0.0, 0.0, 1.0);
+    return light.z >= lowest ? light : raised;
+}
+
 // What the bright lights add to lookup lobe n at direction d: each light a disc of radius ρ_j, so
 // the lobe convolved with it, a normalized Phong lobe (phong.h) widened as the footprint widens one
 // (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + ρ²/4; Σ E_j·(n' + 1)/(2π)·max(0, d·l_j)^n'.

@@ -65,8 +65,9 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
     float n = lookupExponent(g.pdf, count);
     float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + footprint;
     LayerLookup q;
-    q.light = normalize(g.light.x * t + g.light.y * b + g.light.z * r.normal);
     q.shown = u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+    vec3 l = keptAboveHorizon(g.light, q.shown);
+    q.light = normalize(l.x * t + l.y * b + l.z * r.normal);
     q.entry = int(round(exponentLambda(q.shown) * float(STACK_STEPS_PER_LEVEL)));
     q.weightA = max(g.weight, 0.0) * (1.0 - g.fresnelEdge);
     q.weightB = max(g.weight, 0.0) * g.fresnelEdge;
@@ -74,7 +75,8 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
 }
 
 // A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
-// lobe as wide as its share of the GGX lobe (widened by the footprint of R), their means weighted
+// lobe as wide as its share of the GGX lobe (widened by the footprint of R), read from its light
+// raised until the lobe's half-maximum is above the horizon (keptAboveHorizon), their means weighted
 // by G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
 // multiply; plus the bright lights through the exact BRDF of Fresnel `f0`, `f90`, times `layer`
 // (what the coat leaves, or takes). One lookup along R for the mirror.

@@ -63,6 +63,16 @@ double lookupExponent(double pdf, int count, double spread) {
     return std::max(0.0, 2.0 * std::numbers::pi * count * pdf / spread - 1.0);
 }
 
+glm::dvec3 keptAboveHorizon(const glm::dvec3& light, double exponent) {
+    if (std::isinf(exponent)) return light;
+    const double lowest = std::sqrt(std::max(0.0, 1.0 - std::exp2(-2.0 / std::max(exponent, 1e-6))));
+    if (light.z >= lowest) return light;
+    const double across = std::hypot(light.x, light.y);
+    if (across <= 0.0) return glm::dvec3(0.0, 0.0, 1.0);
+    const double scale = std::sqrt(1.0 - lowest * lowest) / across;
+    return glm::dvec3(light.x * scale, light.y * scale, lowest);
+}
+
 ExponentRange lookupExponentRange(double alpha, int count, double spread) {
     ExponentRange range{0.0, std::numeric_limits<double>::infinity()};
     for (int column = 0; column < GgxAlbedoTable::kCosSteps; ++column) {

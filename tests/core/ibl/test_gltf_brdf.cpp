@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 namespace mipgloss {
@@ -147,6 +148,29 @@ TEST(GgxLookup, WeightsAverageToTheAlbedoAndLightsLeaveAboutR) {
     EXPECT_NEAR(mirror.light.z, 0.6, 1e-12);
     EXPECT_NEAR(mirror.weight, 1.0, 1e-12);
     EXPECT_TRUE(std::isinf(lookupExponent(mirror.pdf, 8)));
+}
+
+TEST(GgxLookup, ALobeNearTheHorizonReadsFromWhereItsHalfMaximumClearsIt) {
+    // Lobe n's half-maximum cone (cos^n θ = ½) must lie above the horizon: a light lower than
+    // that cone's half-angle is raised to it, its azimuth kept; a higher one is left alone.
+    for (double n : {0.5, 3.0, 20.0, 400.0}) {
+        const double half = std::acos(std::exp2(-1.0 / n));
+        const glm::dvec3 high(std::cos(half + 0.05), 0.0, std::sin(half + 0.05));
+        EXPECT_EQ(keptAboveHorizon(high, n), high) << n;
+        for (double elevation : {half - 0.01, 0.0, -0.3}) {
+            const double azimuth = 0.7;
+            const glm::dvec3 low(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                                 std::sin(elevation));
+            const glm::dvec3 kept = keptAboveHorizon(low, n);
+            EXPECT_NEAR(glm::length(kept), 1.0, 1e-12) << n;
+            EXPECT_NEAR(std::asin(kept.z), half, 1e-9) << n << " " << elevation;
+            EXPECT_NEAR(std::atan2(kept.y, kept.x), azimuth, 1e-9) << n << " " << elevation;
+        }
+    }
+    // n = 0 (a half-maximum at 90°) reads about N; the mirror's infinite lobe reads where it is.
+    EXPECT_NEAR(keptAboveHorizon(glm::normalize(glm::dvec3(1.0, 0.0, 0.2)), 0.0).z, 1.0, 1e-12);
+    const glm::dvec3 grazing = glm::normalize(glm::dvec3(1.0, 0.0, 1e-3));
+    EXPECT_EQ(keptAboveHorizon(grazing, std::numeric_limits<double>::infinity()), grazing);
 }
 
 TEST(RadianceTree, IntegratesAUniformSphereExactlyAndTheCosineWithinTheHorizonSplit) {

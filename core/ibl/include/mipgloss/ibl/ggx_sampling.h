@@ -46,6 +46,15 @@ struct GgxLookup {
 GgxLookup ggxLookup(double alpha, const glm::dvec3& view, const glm::dvec2& u);
 // The lobe a lookup reads: 2π·count·pdf/kSampleSpread − 1, at least 0; ∞ for α = 0.
 double lookupExponent(double pdf, int count, double spread = kSampleSpread);
+// Where a lookup's lobe reads from (frame N = z): its light, raised toward N until the lobe's
+// half-maximum cone (cos^n θ = ½, sin θ½ = √(1 − 2^(−2/n))) is above the horizon. The truth
+// integrates over the upper hemisphere only; a lobe about a light near the horizon would average
+// in what lies below it (a forest's dark ground under a rough metal: 6–12 % too dark), so it
+// reads from the lowest direction whose lobe mostly sees the sky, its azimuth kept. A lobe of
+// n = 0 (half-maximum at 90°) reads about N: the clamped cosine about N is the upper hemisphere.
+// Measured in docs/material-truth.md ("The horizon").
+glm::dvec3 keptAboveHorizon(const glm::dvec3& light, double exponent);
+
 // The sharpest and widest lobe any fragment's lookups read at α (N·v over its range).
 struct ExponentRange {
     double sharpest = 0.0, widest = 0.0;
