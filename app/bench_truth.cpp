@@ -35,6 +35,7 @@ namespace mipgloss::app {
 const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]... [--env-sizes 128,256] [--sizes 384,96]
                        [--lookups 4,8,16] [--lights on|off|both] [--roughness 0.05,0.2,0.3,0.6,0.7,1]
                        [--pixels P] [--frames F] [--truth-at area|centre] [--dump DIR]
+                       [--scattering single|compensated]
 
 bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
   0.95, 0.64, 0.54, at each roughness), drawn by the renderer with K lookups per GGX layer, against
@@ -56,6 +57,8 @@ bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0
                     path tracer's box filter, S from the change of R across it against the lobe),
                     or at its centre ("centre")
   --dump DIR        each row's pixels as CSV in DIR (x, y, N·v, shown, truth, Karis; RGB each)
+  --scattering S    single (default: the glTF specification's BRDF) or compensated (multiple
+                    scattering, ggx_sampling.h): the picture, the truth and Karis all so
 )";
 
 namespace {
@@ -190,7 +193,7 @@ int areaSubdivisions(const PixelGeometry& g, double alpha) {
     return std::clamp(static_cast<int>(std::ceil(2.0 * turn / alpha)), 1, 4);
 }
 
-Scene sphereScene(const Layers& layers, int lookups, bool lights) {
+Scene sphereScene(const Layers& layers, int lookups, bool lights, Scattering scattering) {
     static const auto sphere = std::make_shared<const Mesh>(makeSphere(128, 256));
     Scene scene;
     SceneObject object;
@@ -204,6 +207,7 @@ Scene sphereScene(const Layers& layers, int lookups, bool lights) {
     scene.display.samples = 0;
     scene.display.ggxLookups = lookups;
     scene.display.brightLights = lights;
+    scene.display.scattering = scattering;
     return scene;
 }
 
@@ -216,6 +220,7 @@ int runTruthBench(Args args) {
     std::string dumpFolder;
     bool truthOverArea = true;
     std::vector<bool> lightsModes{true};
+    Scattering scattering = Scattering::Single;
     while (!args.empty()) {
         const std::string a = args.next();
         if (a == "--env") envs.push_back(args.value(a));
@@ -232,6 +237,10 @@ int runTruthBench(Args args) {
         else if (a == "--pixels") pixels = static_cast<int>(parseNumbers(a, args.value(a), 10, 1e6).front());
         else if (a == "--frames") frames = static_cast<int>(parseNumbers(a, args.value(a), 1, 1000).front());
         else if (a == "--dump") dumpFolder = args.value(a);
+        else if (a == "--scattering") {
+            const std::string v = args.value(a);
+            if (!parseScattering(v, scattering)) throw UsageError("--scattering is single or compensated, got '" + v + "'");
+        }
         else if (a == "--truth-at") {
             const std::string v = args.value(a);
             if (v == "area") truthOverArea = true;
@@ -277,7 +286,7 @@ int runTruthBench(Args args) {
                         std::vector<double> cosView;
                         for (const double k : lookups)
                         for (const bool lightsOn : lightsModes) {
-                            const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn);
+                            const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn, scattering);
                             renderer.setLobes(makeStackEntries(*env, scene));
                             OrbitCamera camera;
                             camera.yawDegrees = 30.0f;
@@ -312,8 +321,13 @@ int runTruthBench(Args args) {
                                             glm::dvec3 v = glm::normalize(g.v + ox * g.dvdx + oy * g.dvdy);
                                             // Below the surface only by the linearization at a rim.
                                             if (glm::dot(n, v) < 1e-4) v = glm::normalize(v + (1e-4 - glm::dot(n, v)) * n);
-                                            t += materialTruth(tree, layers, n, v).total();
-                                            kk += karisSplitSum(tree, layers, n, v).total();
+                                            t += materialTruth(tree, layers, n, v, scattering).total();
+                                            // Karis compensated as Filament compensates it: its
+                                            // specular × the same factor.
+                                            MaterialPixel split = karisSplitSum(tree, layers, n, v);
+                                            split.specular *= energyCompensation(gltfBrdfOf(layers), layers.roughness,
+                                                                             glm::dot(n, v), scattering);
+                                            kk += split.total();
                                         }
                                     truth[static_cast<std::size_t>(j)] = t / double(s * s);
                                     karis[static_cast<std::size_t>(j)] = kk / double(s * s);

@@ -34,6 +34,9 @@ RenderOptions parseRenderOptions(Args args) {
         else if (a == "--mode") o.mode = parseMode(a, value());
         else if (a == "--tonemap")
             o.toneMap = parseChoice<ToneMap>(a, value(), {kAllToneMaps.begin(), kAllToneMaps.end()}, toneMapName);
+        else if (a == "--scattering")
+            o.scattering = parseChoice<Scattering>(a, value(), {kAllScatterings.begin(), kAllScatterings.end()},
+                                                   scatteringName);
         else if (a == "--size") parseSize(a, value(), o.width, o.height);
         else if (a == "--spin") o.spin = parseFloat(a, value(), -36000.0f, 36000.0f);
         else if (a == "--turntable") o.turntable = parseWholeNumber(a, value(), 1, 3600);

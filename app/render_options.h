@@ -30,6 +30,7 @@ struct RenderOptions {
     std::optional<Rgb> background;     // --background: the backdrop, the environment hidden
     std::optional<std::string> camera; // --camera: a glTF camera of the (first) asset, by name or index
     std::optional<ToneMap> toneMap;
+    std::optional<Scattering> scattering;
     std::optional<int> envSize, samples, turntable;
     std::optional<Builder> builder, compareBuilder;
     std::optional<std::filesystem::path> compareEnv;

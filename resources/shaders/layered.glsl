@@ -11,6 +11,7 @@ uniform float uSpecularRoughness;
 uniform float uCoat;           // 0: no coat
 uniform float uCoatRoughness;
 uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
+uniform bool uCompensated;     // multiple scattering (ggx_sampling.h, Scattering::Compensated)
 uniform ivec2 uSpecularEntries;  // the stack entries each layer's lookups read, first and last
 uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStack/uUseCoatStack)
 // The same entries made from the smooth remainder (lobes.h, remainderEntries; bright_lights.h,
@@ -50,9 +51,11 @@ vec3 ggxAlbedo(float roughness, float cosView) {
 //   coat       c·Fc(N·v)·A_c and c·Fc(N·v)·B_c, likewise     Fc = 0.04 + 0.96 (1 − N·v)⁵
 //   specular   (1 − c·Fc)·F0·A  on the lookups' A-weighted mean, (1 − c·Fc)·F90·B on their B-weighted one
 //   diffuse    (1 − c·Fc)·c_diff·(1 − Fd0 − (F90 − Fd0)·Bd)  on E(N)/π   (F90 = 1: (1 − Fd0)(1 − Bd))
+// and `compensation`, what multiple scattering multiplies the specular layer by, lookups and lights:
+// 1 + F0·(1 − A − B)/(A + B) when uCompensated, else 1 (ggx_sampling.h, scatteringCompensation).
 void layerWeightsOf(float cosView, vec3 f0, float f90, vec3 diffuseF0, vec3 diffuseColour, float roughness,
                     out vec3 diffuse, out vec3 specular, out vec3 specularEdge, out vec3 coat, out vec3 coatEdge,
-                    out float coatWeight) {
+                    out float coatWeight, out vec3 compensation) {
     vec3 e = ggxAlbedo(roughness, cosView);
     float m = 1.0 - clamp(cosView, 0.0, 1.0);
     coatWeight = uCoat > 0.0 ? uCoat * (COAT_F0 + (1.0 - COAT_F0) * m * m * m * m * m) : 0.0;
@@ -60,8 +63,10 @@ void layerWeightsOf(float cosView, vec3 f0, float f90, vec3 diffuseF0, vec3 diff
     float base = 1.0 - coatWeight;
     coat = vec3(coatWeight * c.x);
     coatEdge = vec3(coatWeight * c.y);
-    specular = base * f0 * e.x;
-    specularEdge = vec3(base * f90 * e.y);
+    float albedo = e.x + e.y;
+    compensation = uCompensated && albedo > 0.0 ? vec3(1.0) + f0 * ((1.0 - albedo) / albedo) : vec3(1.0);
+    specular = compensation * base * f0 * e.x;
+    specularEdge = compensation * base * f90 * e.y;
     diffuse = base * diffuseColour * (vec3(1.0) - diffuseF0 - (vec3(f90) - diffuseF0) * e.z);
 }
 

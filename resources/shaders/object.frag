@@ -79,7 +79,8 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
 // raised until the lobe's half-maximum is above the horizon (keptAboveHorizon), their means weighted
 // by G2/G1·(1 − (1 − v·h)⁵) and by G2/G1·(1 − v·h)⁵, which the plan's weights (the table's A and B)
 // multiply; plus the bright lights through the exact BRDF of Fresnel `f0`, `f90`, times `layer`
-// (what the coat leaves, or takes). One lookup along R for the mirror.
+// (what the coat leaves, or takes; and multiple scattering's factor on the specular). One lookup
+// along R for the mirror.
 //
 // Two loops, of which a draw runs one (the other counts to 0): a CPU rasterizer runs both sides
 // of every branch for every fragment (llvmpipe: masked SIMD), but no loop that no fragment enters.
@@ -90,7 +91,7 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
 //   else    per lookup the stack's entry where it holds it, else the chain at the level holding
 //           the lobe, less the lights' share: an entry still being made, a lobe sharper than the
 //           stack's first (near-mirror layers), a roughness map's fragments.
-vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, float layer) {
+vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3 layer) {
     float cosView = clamp(dot(r.normal, r.view), 1e-4, 1.0);
     vec3 t = r.view - cosView * r.normal;
     float tl = length(t);
@@ -162,10 +163,10 @@ void main() {
     FragmentPlan p = planFragment();
 #ifdef LAYERED
     vec3 diffuse = readDiffuse(p);
-    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, p.f90, 1.0 - p.coatWeight);
+    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, p.f90, (1.0 - p.coatWeight) * p.compensation);
     vec3 coat = vec3(0.0);
     // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
-    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), 1.0, p.coatWeight);
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), 1.0, vec3(p.coatWeight));
     if (p.cut) discard;
     // A blended material's alpha is its coverage (glTF): the renderer blends it over what is
     // behind (object_pass.cpp).

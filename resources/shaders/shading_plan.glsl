@@ -71,6 +71,7 @@ struct FragmentPlan {
     float f90;                        // its Fresnel at grazing (KHR_materials_specular; else 1)
     vec3 diffuseF0;                   // the F0 of what its diffuse loses (layered.h)
     float coatWeight;                 // c·Fc(N·v): what the coat takes from the base
+    vec3 compensation;                // multiple scattering's factor on the specular (layered.glsl)
     float occlusion;                  // multiplies the sum (1 without maps)
     vec3 emissive;                    // added to it (0 without maps)
     bool cut;                         // alpha below the mask's cutoff: no fragment
@@ -173,6 +174,7 @@ FragmentPlan planFragment() {
         p.diffuseF0 = vec3(0.0);
         p.diffuseColour = vec3(0.0);
         p.coatWeight = 0.0;
+        p.compensation = vec3(1.0);
         return p;
     }
 #else
@@ -194,7 +196,7 @@ FragmentPlan planFragment() {
     p.diffuseColour = uDiffuseColour;
 #endif
     layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
-                   p.wCoatEdge, p.coatWeight);
+                   p.wCoatEdge, p.coatWeight, p.compensation);
     p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);

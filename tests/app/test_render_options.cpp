@@ -45,7 +45,8 @@ TEST(RenderOptions, EachFlagSetsItsField) {
                                    "--lambda", "2.5", "--mode", "normal", "--exposure", "-1.5", "--background-lambda",
                                    "4", "--yaw", "30", "--pitch", "-20", "--env-size", "64", "--samples", "4",
                                    "--builder", "box", "--tonemap", "aces", "--size", "320x200", "--spin", "45",
-                                   "--no-background", "--quiet", "--no-settle", "--metallic", "1"});
+                                   "--no-background", "--quiet", "--no-settle", "--metallic", "1",
+                                   "--scattering", "compensated"});
     EXPECT_EQ(o.scene, std::filesystem::path("scene.mipgloss"));
     EXPECT_EQ(o.environment, std::filesystem::path("sky.exr"));
     EXPECT_EQ(o.meshes, (std::vector<std::filesystem::path>{"a.obj", "b.glb"}));
@@ -68,6 +69,7 @@ TEST(RenderOptions, EachFlagSetsItsField) {
     EXPECT_EQ(o.spin, 45.0f);
     EXPECT_TRUE(o.noBackground && o.quiet && o.noSettle && !o.noStack);
     EXPECT_EQ(o.layers.metallic, 1.0f);
+    EXPECT_EQ(o.scattering, Scattering::Compensated);
 }
 
 TEST(RenderOptions, ExponentIsReadAsTheLambdaOfThatLobe) {
@@ -103,6 +105,8 @@ TEST(RenderOptions, BadValuesAreRefusedInTheirExactWords) {
               "--compare-builder is phong, box, paper or reference, got 'sideways'");
     EXPECT_EQ(refusal({"--tonemap", "filmic", "--out", "a.png"}),
               "--tonemap is linear, reinhard, aces, pbr-neutral or agx, got 'filmic'");
+    EXPECT_EQ(refusal({"--scattering", "double", "--out", "a.png"}),
+              "--scattering is single or compensated, got 'double'");
     EXPECT_EQ(refusal({"--background", "2,0,0", "--out", "a.png"}),
               "--background takes a colour as the screen shows it, each of R,G,B in [0, 1]");
     EXPECT_EQ(refusal({"--camera", "camera0", "--out", "a.png"}),

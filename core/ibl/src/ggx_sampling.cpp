@@ -90,6 +90,25 @@ ExponentRange lookupExponentRange(double alpha, int count, double spread) {
     return range;
 }
 
+const char* scatteringName(Scattering scattering) {
+    return scattering == Scattering::Compensated ? "compensated" : "single";
+}
+
+bool parseScattering(const std::string& text, Scattering& out) {
+    for (Scattering s : kAllScatterings)
+        if (text == scatteringName(s)) {
+            out = s;
+            return true;
+        }
+    return false;
+}
+
+double scatteringCompensation(double f0, const GgxAlbedoTable::Albedo& e, Scattering scattering) {
+    const double albedo = e.a + e.b;
+    if (scattering == Scattering::Single || !(albedo > 0.0)) return 1.0;
+    return 1.0 + f0 * (1.0 - albedo) / albedo;
+}
+
 GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int samples) {
     const double alpha = roughness * roughness;
     const double mu = std::max(cosView, kLeastCosView);

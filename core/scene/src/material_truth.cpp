@@ -45,10 +45,9 @@ GltfBrdf gltfBrdfOf(const Layers& layers) {
 }
 
 glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cosView, Scattering scattering) {
-    if (scattering == Scattering::Single) return glm::dvec3(1.0);
     const GgxAlbedoTable::Albedo e = GgxAlbedoTable::shared().at(roughness, cosView);
-    const double albedo = e.a + e.b;
-    return albedo > 0.0 ? glm::dvec3(1.0) + brdf.f0 * ((1.0 - albedo) / albedo) : glm::dvec3(1.0);
+    return {scatteringCompensation(brdf.f0.x, e, scattering), scatteringCompensation(brdf.f0.y, e, scattering),
+            scatteringCompensation(brdf.f0.z, e, scattering)};
 }
 
 namespace {

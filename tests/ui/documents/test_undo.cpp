@@ -130,6 +130,7 @@ std::vector<Edit> everyKindOfEdit() {
              s.exposureEv = -1.5f;
              s.backgroundLambda = 3.0f;
              s.toneMap = ToneMap::Reinhard;
+             s.scattering = Scattering::Compensated;
              d.setDisplay(s);
          }},
     };

@@ -97,6 +97,7 @@ Scene figure1WithBunny() {
     scene.display.exposureEv = -1.5f;
     scene.display.toneMap = ToneMap::Reinhard;
     scene.display.samples = 8;
+    scene.display.scattering = Scattering::Compensated;
     return scene;
 }
 

@@ -228,6 +228,9 @@ void SetDisplayCommand::updateText() {
     field.note(before_.exposureEv != after_.exposureEv, EDIT_TEXT("Change exposure"));
     field.note(before_.toneMap != after_.toneMap, EDIT_TEXT("Change tone map"));
     field.note(before_.samples != after_.samples, EDIT_TEXT("Change multisampling"));
+    field.note(before_.scattering != after_.scattering, after_.scattering == Scattering::Compensated
+                                                            ? EDIT_TEXT("Keep bounced light")
+                                                            : EDIT_TEXT("Single scattering"));
     field.note(before_.environmentRotationDegrees != after_.environmentRotationDegrees,
                EDIT_TEXT("Rotate environment"));
     setText(field.text());

@@ -131,6 +131,10 @@ public:
         const std::string aces = toneMapName(ToneMap::Aces);
         const std::string map = string(o, "toneMap", where, &aces);
         if (!parseToneMap(map, d.toneMap)) fail("unknown \"display.toneMap\" \"" + map + "\"");
+        // Absent in files before it: the specification's single scattering, as they were drawn.
+        const std::string single = scatteringName(Scattering::Single);
+        const std::string scattering = string(o, "scattering", where, &single);
+        if (!parseScattering(scattering, d.scattering)) fail("unknown \"display.scattering\" \"" + scattering + "\"");
         const int samples =
             clamped(integer(o, "samples", where, d.samples), 1, kMaxSamples, "display.samples");
         // Multisampling takes powers of two.
@@ -270,6 +274,7 @@ QByteArray sceneToJson(const Scene& scene, const fs::path& sceneFile) {
         {"exposureEv", d.exposureEv},         {"toneMap", toneMapName(d.toneMap)},
         {"samples", d.samples},
         {"environmentRotationDegrees", d.environmentRotationDegrees},
+        {"scattering", scatteringName(d.scattering)},
     };
     // The materials the objects use, once each, in the scene's order.
     QJsonArray materials;

@@ -272,6 +272,7 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
     const bool irradianceReady = uploadedIrradiance != nullptr;
     gl->glUniform1i(program.uniformLocation("uGgxLookups"), std::max(scene.display.ggxLookups, 1));
+    gl->glUniform1i(program.uniformLocation("uCompensated"), scene.display.scattering == Scattering::Compensated);
     // The environment's bright lights (bright_lights.h), in its frame, as the shaders read them.
     {
         std::array<glm::vec4, kMaxBrightLights> directions{};

@@ -210,6 +210,20 @@ EnvironmentPanel::EnvironmentPanel(SceneDocument* document, EnvironmentManager* 
     });
     form->addRow(tr("Multisampling"), samples_);
 
+    // Multiple scattering (ggx_sampling.h, Scattering): the glTF BRDF as the specification writes
+    // it loses the light that bounces between a rough surface's microfacets; kept, rough metals
+    // are as bright as a path tracer draws them.
+    keepBouncedLight_ = new QCheckBox(tr("Keep light bounced between microfacets"), this);
+    keepBouncedLight_->setObjectName(QStringLiteral("keepBouncedLightCheck"));
+    keepBouncedLight_->setToolTip(tr("Rough metals lose up to a third of their light under glTF's own "
+                                     "BRDF, which counts one bounce; on, that light is kept (multiple "
+                                     "scattering, as Blender's Multiscatter GGX and Filament do). Off "
+                                     "shows the glTF specification's material exactly."));
+    connect(keepBouncedLight_, &QCheckBox::toggled, this, [this](bool on) {
+        editDisplay([on](DisplaySettings& d) { d.scattering = on ? Scattering::Compensated : Scattering::Single; });
+    });
+    form->addRow(tr("Materials"), keepBouncedLight_);
+
     connect(document_, &SceneDocument::environmentChanged, this, &EnvironmentPanel::refresh);
     connect(document_, &SceneDocument::displayChanged, this, &EnvironmentPanel::refresh);
     connect(environments_, &EnvironmentManager::environmentReady, this, &EnvironmentPanel::refresh);
@@ -244,7 +258,7 @@ void EnvironmentPanel::refresh() {
 
     const QSignalBlocker b1(builder_), b2(faceSize_), b3(handedness_), b4(rotation_),
         b5(showBackground_), b6(backgroundBlur_), b7(exposure_), b8(toneMap_), b9(samples_),
-        b10(rotationDegrees_);
+        b10(rotationDegrees_), b11(keepBouncedLight_);
     builder_->setCurrentText(QString::fromLatin1(builderName(s.builder)));
     int sizeIndex = faceSize_->findData(s.faceSize);
     if (sizeIndex < 0) {  // a size from a scene file or the command line
@@ -267,6 +281,7 @@ void EnvironmentPanel::refresh() {
         samplesIndex = samples_->count() - 1;
     }
     samples_->setCurrentIndex(samplesIndex);
+    keepBouncedLight_->setChecked(d.scattering == Scattering::Compensated);
 
     const auto current = environments_->current();
     if (current && !current->complete()) {

@@ -21,7 +21,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace mipgloss {
@@ -87,6 +89,21 @@ public:
 private:
     std::vector<float> nodes_;
 };
+
+// Multiple scattering (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time
+// Image-based Lighting", JCGT 8(1)): single-scattering GGX loses the light that bounces between
+// microfacets, 1 − E of it for a white metal (E = A + B, 9 % at r 0.5 head-on, 60 % at r 1 toward
+// grazing); compensated, the specular lobe is scaled by 1 + F0·(1 − E)/E, so a white metal keeps
+// all its energy and a coloured one gains the F0-tinted share a path tracer's bounces give. Off
+// (Single) is the glTF specification's BRDF, the default; the truth follows the same switch
+// (material_truth.h).
+enum class Scattering { Single, Compensated };
+inline constexpr std::array<Scattering, 2> kAllScatterings = {Scattering::Single, Scattering::Compensated};
+const char* scatteringName(Scattering scattering);  // "single", "compensated"
+bool parseScattering(const std::string& text, Scattering& out);
+// What the compensation multiplies a specular lobe of Fresnel F0 (one channel) by, for the lobe's
+// albedos `e` at its roughness and N·v: 1 + F0·(1 − E)/E compensated, 1 single.
+double scatteringCompensation(double f0, const GgxAlbedoTable::Albedo& e, Scattering scattering);
 
 // The same integrals by VNDF quadrature on a samples × samples grid (what the table is built from).
 GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int samples);

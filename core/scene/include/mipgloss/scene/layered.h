@@ -67,7 +67,8 @@ LayerWeights layerWeights(const Layers& layers, double cosView,
 //   specular  (1 − c·Fc)·(F0·A + F90·B)
 //   diffuse   (1 − c·Fc)·c_diff·(1 − Fd0 − (F90 − Fd0)·Bd)   Fd0 = diffuseFresnelF0
 //             (with F90 = 1: (1 − F0)(1 − Bd))
-LayerWeights ggxLayerWeights(const Layers& layers, double cosView);
+// The specular × 1 + F0·(1 − A − B)/(A + B) per channel when compensated (ggx_sampling.h).
+LayerWeights ggxLayerWeights(const Layers& layers, double cosView, Scattering scattering = Scattering::Single);
 
 // Every λ a material reads (its lobes in use, for stack entries and the chain's depth): the single
 // lobe's λ; a layered material's specular λ, its coat's when it has one, and the diffuse λ unless

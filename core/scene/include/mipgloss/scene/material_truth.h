@@ -27,12 +27,8 @@ struct MaterialPixel {
     glm::dvec3 total() const { return diffuse + specular + coat; }
 };
 
-// Multiple scattering (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time
-// Image-based Lighting", JCGT 8(1)): the specular scaled by 1 + F0·(1 − E)/E, E the lobe's
-// single-scattering albedo at F0 = 1, so a white metal keeps all its energy. Off: the spec.
-enum class Scattering { Single, Compensated };
-
-// What the compensation multiplies the specular by at N·v (1 for Single).
+// What the compensation (ggx_sampling.h, Scattering) multiplies the specular by at N·v, per channel
+// of F0 (1 for Single).
 glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cosView, Scattering scattering);
 
 // The truth at one pixel: unit normal n, unit view v (toward the eye, above the surface).

@@ -280,6 +280,9 @@ struct DisplaySettings {
     // The environment's bright texels shaded as lights with the exact BRDF (bright_lights.h); off:
     // the lookups read them with the rest (for `mipgloss bench truth` to show what they buy).
     bool brightLights = true;
+    // Multiple scattering (ggx_sampling.h): off, every layered material is the glTF specification's
+    // single-scattering BRDF; compensated, rough metals keep the energy their microfacets bounce.
+    Scattering scattering = Scattering::Single;
     bool operator==(const DisplaySettings&) const = default;
 };
 

@@ -70,6 +70,7 @@ private:
     QDoubleSpinBox* exposure_ = nullptr;
     QComboBox* toneMap_ = nullptr;
     QComboBox* samples_ = nullptr;
+    QCheckBox* keepBouncedLight_ = nullptr;
 };
 
 }  // namespace mipgloss::ui
