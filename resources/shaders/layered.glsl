@@ -126,13 +126,15 @@ vec3 keptAboveHorizon(vec3 light, float n) {
     return light.z >= lowest ? light : raised;
 }
 
-// What the bright lights add to lookup lobe n at direction d: each light a disc of radius ρ_j, so
-// the lobe convolved with it, a normalized Phong lobe (phong.h) widened as the footprint widens one
-// (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + ρ²/4; Σ E_j·(n' + 1)/(2π)·max(0, d·l_j)^n'.
-vec3 lightsThrough(vec3 d, float n) {
+// What the first `count` bright lights add to lookup lobe n at direction d: each light a disc of
+// radius ρ_j, so the lobe convolved with it, a normalized Phong lobe (phong.h) widened as the
+// footprint widens one (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + ρ²/4;
+// Σ E_j·(n' + 1)/(2π)·max(0, d·l_j)^n'. The caller passes 0 lights where it would discard the sum:
+// a CPU rasterizer runs both sides of a branch for every fragment, but not a loop nobody enters.
+vec3 lightsThrough(vec3 d, float n, int count) {
     vec3 sum = vec3(0.0);
     float u = isinf(n) ? 0.0 : 1.0 / (n + 2.0);
-    for (int j = 0; j < uLightCount; ++j) {
+    for (int j = 0; j < count; ++j) {
         float c = dot(d, uLightDirection[j].xyz);
         float radius = uLightDirection[j].w;
         float w = u + 0.25 * radius * radius;
@@ -204,15 +206,16 @@ float horizonCosine(float cosLight, float radius) {
     return radius * (u * (0.5 + (u * w + asin(u)) / PI) + (2.0 / (3.0 * PI)) * w * w * w);
 }
 
-// The lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j, D GGX's
-// averaged over the light's disc (lightDistribution), V and F at its centre. (t, bt): the layer's
-// tangent frame of `normal` (object.frag, readGgx), the slope plane's axes.
-vec3 lightsSpecular(vec3 normal, vec3 t, vec3 bt, vec3 view, float alpha, vec3 f0, float f90) {
+// The first `count` lights through the glTF specular lobe exactly (gltf_brdf.h): Σ F(v·h)·D·V·(N·l)·E_j,
+// D GGX's averaged over the light's disc (lightDistribution), V and F at its centre. (t, bt): the
+// layer's tangent frame of `normal` (object.frag, readGgx), the slope plane's axes. 0 lights
+// where the layer reads them in the environment (lightsThrough: no loop nobody enters).
+vec3 lightsSpecular(vec3 normal, vec3 t, vec3 bt, vec3 view, float alpha, vec3 f0, float f90, int count) {
     vec3 sum = vec3(0.0);
     float cv = dot(normal, view);
     if (cv <= 0.0) return sum;
     float a2 = alpha * alpha;
-    for (int j = 0; j < uLightCount; ++j) {
+    for (int j = 0; j < count; ++j) {
         vec3 l = uLightDirection[j].xyz;
         float radius = uLightDirection[j].w;
         float cl = horizonCosine(dot(normal, l), radius);

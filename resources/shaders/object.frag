@@ -105,6 +105,8 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     // (uLightsMinAlpha, object_pass.cpp); a sharper lobe reads them in the environment.
     bool split = r.alpha >= uLightsMinAlpha;
     bool subtract = split && !r.remainder;
+    // The lights each loop goes through: none where it would discard them (lightsThrough).
+    int apart = split ? uLightCount : 0, subtracted = subtract ? uLightCount : 0;
     // The footprint widens every lookup's lobe the same way (lobes.h, footprintExponent).
     float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
     int held = r.held ? count : 0;
@@ -114,7 +116,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
         // One read, of one table or the other (a select: both tables are uniforms).
         vec4 entry = r.remainder ? uRemainderEntry[j] : vec4(uStackEntry[j].xyz, uStackScale[j]);
         vec3 value = atlasRead(entry.xyz, entry.w, q.light);
-        if (subtract) value -= lightsThrough(q.light, uStackExponent[j]);
+        value -= lightsThrough(q.light, uStackExponent[j], subtracted);
         sumA += q.weightA * value;
         sumB += q.weightB * value;
         weightA += q.weightA;
@@ -136,14 +138,14 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
             value = textureLod(uEnvironment, q.light, level).rgb;
         }
         // The lights in that lobe, shaded exactly below instead.
-        if (split) value -= lightsThrough(q.light, shown);
+        value -= lightsThrough(q.light, shown, apart);
         sumA += q.weightA * value;
         sumB += q.weightB * value;
         weightA += q.weightA;
         weightB += q.weightB;
     }
     vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
-    return split ? lookups + layer * lightsSpecular(r.normal, t, b, r.view, r.alpha, f0, f90) : lookups;
+    return lookups + layer * lightsSpecular(r.normal, t, b, r.view, r.alpha, f0, f90, apart);
 }
 
 // The diffuse base: its read less the bright lights' Lambert share, weighted, plus the lights
