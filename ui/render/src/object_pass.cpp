@@ -288,7 +288,7 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
         gl->glUniform4fv(program.uniformLocation("uLightDirection"), kMaxBrightLights, glm::value_ptr(directions[0]));
         gl->glUniform3fv(program.uniformLocation("uLightEnergy"), kMaxBrightLights, glm::value_ptr(energies[0]));
         gl->glUniform1i(program.uniformLocation("uLightCount"), scene.display.brightLights ? count : 0);
-        // A GGX lobe shades them apart from α = 4/N on (lobes.h, lightsApartMinAlpha); sharper
+        // A GGX lobe shades them apart from α = 2/N on (lobes.h, lightsApartMinAlpha); sharper
         // ones read them in the environment.
         gl->glUniform1f(program.uniformLocation("uLightsMinAlpha"), scene.display.brightLights
                                                                         ? static_cast<float>(lightsApartMinAlpha(environmentFaceSize))

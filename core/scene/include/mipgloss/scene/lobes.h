@@ -73,10 +73,14 @@ inline int stackKey(const LobeStackEntry& entry) { return stackKey(entry.index, 
 inline bool isRemainderKey(int key) { return key >= kRemainderKeyOffset; }
 inline int stackKeyIndex(int key) { return isRemainderKey(key) ? key - kRemainderKeyOffset : key; }
 
-// The least α at which a GGX layer shades the bright lights apart (α = 4/N for a base of face N: a
-// lobe at least two texels wide; a point stands for texels of about 2/N rad). A sharper layer
-// reads the lights in the environment, through the whole stack or the chain.
-inline double lightsApartMinAlpha(int baseSize) { return 4.0 / static_cast<double>(baseSize > 1 ? baseSize : 1); }
+// The least α at which a GGX layer shades the bright lights apart: α = 2/N for a base of face N,
+// a half-vector lobe one texel wide (a light stands for texels of about 2/N rad). A sharper layer
+// reads the lights in the environment, through the whole stack or the chain: its lookups, sharper
+// than a texel, would subtract a light's disc from bilinear texels that do not hold it. Measured
+// (docs/material-truth.md, "The near-mirror range"): from 4/N, r 0.1–0.125 at face 128 and r 0.1 at
+// 256 went from 7–105 % to 0.6–21 % on sunrise and studio; r 0.05 at 256 (below both) blew up to
+// 45–83 % when every layer shaded them apart.
+inline double lightsApartMinAlpha(int baseSize) { return 2.0 / static_cast<double>(baseSize > 1 ? baseSize : 1); }
 
 // How many entries past a lobe's wider neighbour the scene asks for, for pixels whose footprint
 // widens the lobe (footprintExponent): 4, half a level, holds lobes down to 2^(−5/4) ≈ 0.42 of n.
