@@ -103,10 +103,10 @@ bool parseScattering(const std::string& text, Scattering& out) {
     return false;
 }
 
-double scatteringCompensation(double f0, const GgxAlbedoTable::Albedo& e, Scattering scattering) {
+glm::dvec3 scatteringCompensation(const glm::dvec3& f0, const GgxAlbedoTable::Albedo& e, Scattering scattering) {
     const double albedo = e.a + e.b;
-    if (scattering == Scattering::Single || !(albedo > 0.0)) return 1.0;
-    return 1.0 + f0 * (1.0 - albedo) / albedo;
+    if (scattering == Scattering::Single || !(albedo > 0.0)) return glm::dvec3(1.0);
+    return glm::dvec3(1.0) + f0 * ((1.0 - albedo) / albedo);
 }
 
 GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int samples) {

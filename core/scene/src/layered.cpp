@@ -74,7 +74,7 @@ LayerWeights ggxLayerWeights(const Layers& layers, double cosView, Scattering sc
     const float f90 = specularF90(layers), bd = static_cast<float>(e.diffuseEdge);
     LayerWeights w;
     w.specular = static_cast<float>(base) * (f0 * static_cast<float>(e.a) + Rgb(f90 * static_cast<float>(e.b)));
-    for (int c = 0; c < 3; ++c) w.specular[c] *= static_cast<float>(scatteringCompensation(f0[c], e, scattering));
+    w.specular *= Rgb(scatteringCompensation(glm::dvec3(f0), e, scattering));
     w.diffuse = static_cast<float>(base) * diffuseColour(layers) * (Rgb(1.0f) - fd0 - (Rgb(f90) - fd0) * bd);
     if (coatWeight > 0.0) {
         const GgxAlbedoTable::Albedo c = table.at(layers.coatRoughness, mu);

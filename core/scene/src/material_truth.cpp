@@ -45,9 +45,7 @@ GltfBrdf gltfBrdfOf(const Layers& layers) {
 }
 
 glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cosView, Scattering scattering) {
-    const GgxAlbedoTable::Albedo e = GgxAlbedoTable::shared().at(roughness, cosView);
-    return {scatteringCompensation(brdf.f0.x, e, scattering), scatteringCompensation(brdf.f0.y, e, scattering),
-            scatteringCompensation(brdf.f0.z, e, scattering)};
+    return scatteringCompensation(brdf.f0, GgxAlbedoTable::shared().at(roughness, cosView), scattering);
 }
 
 namespace {

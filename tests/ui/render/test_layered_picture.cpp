@@ -53,6 +53,13 @@ Settled renderSettled(const Scene& scene, const std::shared_ptr<const PreparedEn
     return renderer ? test::renderSettled(*renderer, scene, env, size) : Settled{};
 }
 
+// The furnace: a uniform white lat-long (radiance 1 everywhere) written into `dir`.
+std::filesystem::path whiteFurnace(const test::TempDir& dir) {
+    const auto file = dir / "white.exr";
+    writeFloatChannels(file, 64, 32, {"R", "G", "B"}, std::vector<float>(64 * 32 * 3, 1.0f));
+    return file;
+}
+
 Material layered(const Layers& layers) {
     Material m;
     m.layered = true;
@@ -167,9 +174,7 @@ TEST(LayeredPicture, DielectricWeightRisesTowardTheSilhouetteAndAMetalsIsColoure
 // specification's single-scattering BRDF does), within 1 %.
 TEST(LayeredPicture, AWhiteDielectricInAWhiteFurnaceReturnsTheBrdfsAlbedo) {
     test::TempDir dir;
-    const auto file = dir / "white.exr";
-    std::vector<float> white(64 * 32 * 3, 1.0f);
-    writeFloatChannels(file, 64, 32, {"R", "G", "B"}, white);
+    const auto file = whiteFurnace(dir);
     for (const int faceSize : {32, 128})
     for (const int size : {64, 384})
     for (const float coat : {0.0f, 1.0f}) {
@@ -195,9 +200,7 @@ TEST(LayeredPicture, AWhiteDielectricInAWhiteFurnaceReturnsTheBrdfsAlbedo) {
 // weight is ggxLayerWeights' with the same switch. Two face sizes, the sphere small and large.
 TEST(LayeredPicture, AWhiteMetalInAWhiteFurnaceReturnsOneCompensatedAndItsAlbedoSingle) {
     test::TempDir dir;
-    const auto file = dir / "white.exr";
-    std::vector<float> white(64 * 32 * 3, 1.0f);
-    writeFloatChannels(file, 64, 32, {"R", "G", "B"}, white);
+    const auto file = whiteFurnace(dir);
     for (const int faceSize : {32, 128})
     for (const int size : {64, 384})
     for (const float roughness : {0.5f, 1.0f})
@@ -243,9 +246,7 @@ TEST(LayeredPicture, AWhiteMetalInAWhiteFurnaceReturnsOneCompensatedAndItsAlbedo
 // pixels included (all but the silhouette's edge).
 TEST(LayeredPicture, SpecularWeightAndColourInAWhiteFurnaceReturnTheBrdfsAlbedoPerChannel) {
     test::TempDir dir;
-    const auto file = dir / "white.exr";
-    std::vector<float> white(64 * 32 * 3, 1.0f);
-    writeFloatChannels(file, 64, 32, {"R", "G", "B"}, white);
+    const auto file = whiteFurnace(dir);
 
     Layers layers;
     layers.baseColor = Rgb(0.6f, 0.5f, 0.4f);

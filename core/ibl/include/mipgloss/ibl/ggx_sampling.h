@@ -101,9 +101,9 @@ enum class Scattering { Single, Compensated };
 inline constexpr std::array<Scattering, 2> kAllScatterings = {Scattering::Single, Scattering::Compensated};
 const char* scatteringName(Scattering scattering);  // "single", "compensated"
 bool parseScattering(const std::string& text, Scattering& out);
-// What the compensation multiplies a specular lobe of Fresnel F0 (one channel) by, for the lobe's
+// What the compensation multiplies a specular lobe of Fresnel F0 by, per channel, for the lobe's
 // albedos `e` at its roughness and N·v: 1 + F0·(1 − E)/E compensated, 1 single.
-double scatteringCompensation(double f0, const GgxAlbedoTable::Albedo& e, Scattering scattering);
+glm::dvec3 scatteringCompensation(const glm::dvec3& f0, const GgxAlbedoTable::Albedo& e, Scattering scattering);
 
 // The same integrals by VNDF quadrature on a samples × samples grid (what the table is built from).
 GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int samples);
