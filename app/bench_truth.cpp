@@ -40,7 +40,8 @@ const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]
 bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
   0.95, 0.64, 0.54, at each roughness), drawn by the renderer with K lookups per GGX layer, against
   the glTF 2.0 BRDF integrated over the same decoded environment (material_truth.h) at P pixels of
-  the object (every k-th), and the exact Karis split sum on the same pixels. Per row: relative RMS
+  the object (every k-th), and the exact Karis split sum on the same pixels. Per row (K, or K:m
+  where a polished layer reads m of them: lobes.h, ggxLayerLookups): relative RMS
   over the object, the worst N·v bin of width 0.2, the median pixel's relative error, for the picture
   and for Karis, the frame time (ms, F frames, the material alone on llvmpipe or the GPU), Σ shown /
   Σ truth, and the worst pixel's share of the picture's squared error (top1: near 1, one pixel is
@@ -252,7 +253,7 @@ int runTruthBench(Args args) {
     if (envs.empty()) throw UsageError("bench truth needs --env FILE");
     OffscreenSession session("mipgloss", "bench truth");
     ui::OffscreenRenderer& renderer = session.renderer();
-    std::printf("%-14s %5s %5s %-22s %3s | %7s %7s %7s | %7s %7s %7s | %8s\n", "map", "face", "image", "material", "K",
+    std::printf("%-14s %5s %5s %-22s %4s | %7s %7s %7s | %7s %7s %7s | %8s\n", "map", "face", "image", "material", "K",
                 "rms%", "bin%", "med%", "karis%", "kbin%", "kmed%", "ms/frame  shown/truth  top1");
     for (const std::string& file : envs) {
         const std::string map = std::filesystem::path(file).stem().string();
@@ -340,8 +341,13 @@ int runTruthBench(Args args) {
                             char name[64];
                             std::snprintf(name, sizeof name, "%s r %.2f %s", metal ? "metal" : "dielectric", r,
                                           lightsOn ? "L" : "-");
-                            std::printf("%-14s %5d %5d %-22s %3d | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f  %5.2f\n",
-                                        map.c_str(), static_cast<int>(faceSize), side, name, static_cast<int>(k),
+                            // K, and the lookups the layer reads where fewer (lobes.h, ggxLayerLookups).
+                            const int read = ggxLayerLookups(r, static_cast<int>(k), static_cast<int>(faceSize), false, lightsOn);
+                            char count[16];
+                            if (read == static_cast<int>(k)) std::snprintf(count, sizeof count, "%d", read);
+                            else std::snprintf(count, sizeof count, "%d:%d", static_cast<int>(k), read);
+                            std::printf("%-14s %5d %5d %-22s %4s | %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f | %8.2f  %.4f  %5.2f\n",
+                                        map.c_str(), static_cast<int>(faceSize), side, name, count,
                                         100 * e.rms, 100 * e.worstBin, 100 * e.median, 100 * ke.rms, 100 * ke.worstBin,
                                         100 * ke.median, ms, e.ratio, e.worstShare);
                             std::fflush(stdout);

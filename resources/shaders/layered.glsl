@@ -3,6 +3,7 @@
 // half of this file), their energy from the exact albedo table uploaded as uGgxAlbedo, and the
 // weights each layer's value is multiplied by. Included by shading_plan.glsl.
 uniform sampler2D uGgxAlbedo;  // TEXTURE_UNIT_SPLIT_SUM, RGB = (A, B, Bd) at the table's nodes
+uniform sampler2D uGgxLobeMean;  // TEXTURE_UNIT_LOBE_MEAN: the same nodes' mean light direction, RG = (x, z) (ggx_sampling.h, meanLobe)
 uniform vec3 uF0;              // mix(dielectric F0, baseColor, metallic) (layered.h, specularF0)
 uniform float uF90;            // mix(specularWeight, 1, metallic) (specularF90)
 uniform vec3 uDiffuseF0;       // the F0 of what the diffuse loses (diffuseFresnelF0)
@@ -10,7 +11,10 @@ uniform vec3 uDiffuseColour;   // baseColor · (1 − metallic)
 uniform float uSpecularRoughness;
 uniform float uCoat;           // 0: no coat
 uniform float uCoatRoughness;
-uniform int uGgxLookups;       // lookups per GGX layer and fragment (K)
+uniform int uSpecularLookups;  // lookups per fragment of each GGX layer (lobes.h, ggxLayerLookups)
+uniform int uCoatLookups;
+uniform float uSpecularMeanShare;  // how much of each layer reads its mean lobe (ggx_sampling.h, meanLobeShare)
+uniform float uCoatMeanShare;
 uniform bool uCompensated;     // multiple scattering (ggx_sampling.h, Scattering::Compensated)
 uniform ivec2 uSpecularEntries;  // the stack entries each layer's lookups read, first and last
 uniform ivec2 uCoatEntries;      // (lobes.h, ggxEntries; all made when uUseStack/uUseCoatStack)
@@ -37,13 +41,27 @@ const float PI = 3.14159265359;
 
 // A, B and Bd at roughness r and N·v, read bilinearly between the table's nodes as
 // GgxAlbedoTable::at reads them: s from x = 1 − √(1 − θ/(π/2)), θ = acos(N·v); t from r.
-vec3 ggxAlbedo(float roughness, float cosView) {
+vec2 ggxTableCoordinates(float roughness, float cosView) {
     float theta = acos(clamp(cosView, 0.0, 1.0));
     float x = 1.0 - sqrt(max(0.0, 1.0 - theta / HALF_PI));
     float y = clamp(roughness, 0.0, 1.0);
-    vec2 uv = vec2((x * float(GGX_COS_STEPS - 1) + 0.5) / float(GGX_COS_STEPS),
-                   (y * float(GGX_ROUGHNESS_STEPS - 1) + 0.5) / float(GGX_ROUGHNESS_STEPS));
-    return texture(uGgxAlbedo, uv).rgb;
+    return vec2((x * float(GGX_COS_STEPS - 1) + 0.5) / float(GGX_COS_STEPS),
+                (y * float(GGX_ROUGHNESS_STEPS - 1) + 0.5) / float(GGX_ROUGHNESS_STEPS));
+}
+
+vec3 ggxAlbedo(float roughness, float cosView) {
+    return texture(uGgxAlbedo, ggxTableCoordinates(roughness, cosView)).rgb;
+}
+
+// The one Phong lobe with the GGX lobe's first moment at roughness r and N·v (ggx_sampling.h,
+// meanLobe): xyz its direction in the frame N = z, v = (sin θ, 0, cos θ); w its exponent,
+// 1/(n + 2) = 1 − |m|.
+vec4 ggxMeanLobe(float roughness, float cosView) {
+    vec2 m = texture(uGgxLobeMean, ggxTableCoordinates(roughness, cosView)).rg;
+    float len = length(m);
+    if (!(len > 0.0)) return vec4(0.0, 0.0, 1.0, 0.0);
+    float n = len < 1.0 ? max(1.0 / (1.0 - len) - 2.0, 0.0) : 1.0e30;
+    return vec4(m.x / len, 0.0, m.y / len, n);
 }
 
 // What each layer's value is multiplied by at N·v = cosView (gltf_brdf.h), and c·Fc, what the coat

@@ -74,6 +74,32 @@ LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, in
     return q;
 }
 
+// A held lookup's value (below): the stack's entry nearest its lobe (clamped to the layer's), of the
+// remainder when the layer reads it, else of the whole environment less the lights in that lobe.
+vec3 heldRead(LayerRead r, vec3 light, int entry, int subtracted) {
+    int j = clamp(entry, r.entries.x, r.entries.y);
+    // One read, of one table or the other (a select: both tables are uniforms).
+    vec4 e = r.remainder ? uRemainderEntry[j] : vec4(uStackEntry[j].xyz, uStackScale[j]);
+    return atlasRead(e.xyz, e.w, light) - lightsThrough(light, uStackExponent[j], subtracted);
+}
+
+// A lookup's value where the stack may not hold it: its entry where the stack holds it, else the
+// chain at the level that holds the lobe the footprint shows (phong.h, regularScheduleLevel): a
+// near-mirror lookup reads the base, not a blurred level the hardware's footprint would pick (a
+// level's lobe is 3.6 of its texels wide); less the lights in that lobe, shaded exactly instead.
+vec3 chainRead(LayerRead r, vec3 light, float shown, int entry, int apart) {
+    vec3 value;
+    if (r.useStack && entry >= r.entries.x) {
+        int j = min(entry, r.entries.y);
+        shown = uStackExponent[j];
+        value = stackEntryAt(j, light);
+    } else {
+        float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
+        value = textureLod(uEnvironment, light, level).rgb;
+    }
+    return value - lightsThrough(light, shown, apart);
+}
+
 // A GGX layer (READ_GGX, layered.glsl): K lookups at GGX's visible normals, each the stack's exact
 // lobe as wide as its share of the GGX lobe (widened by the footprint of R), read from its light
 // raised until the lobe's half-maximum is above the horizon (keptAboveHorizon), their means weighted
@@ -98,7 +124,9 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     t = tl > 1e-6 ? t / tl : normalize(cross(r.normal, abs(r.normal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
     vec3 b = cross(r.normal, t);
     vec3 v = vec3(sqrt(max(0.0, 1.0 - cosView * cosView)), 0.0, cosView);
-    int count = r.alpha > 0.0 ? uGgxLookups : 1;
+    // A rough layer reads its mean lobe (ggx_sampling.h, meanLobeShare) instead of, or blended
+    // with, its K lookups: no loop runs that the layer does not read.
+    int count = r.meanShare >= 1.0 ? 0 : (r.alpha > 0.0 ? max(r.lookups, 1) : 1);
     vec3 sumA = vec3(0.0), sumB = vec3(0.0);
     float weightA = 0.0, weightB = 0.0;
     // The lights are points: shaded apart only where the lobe is wider than a few base texels
@@ -112,11 +140,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     int held = r.held ? count : 0;
     for (int k = 0; k < held; ++k) {
         LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
-        int j = clamp(q.entry, r.entries.x, r.entries.y);
-        // One read, of one table or the other (a select: both tables are uniforms).
-        vec4 entry = r.remainder ? uRemainderEntry[j] : vec4(uStackEntry[j].xyz, uStackScale[j]);
-        vec3 value = atlasRead(entry.xyz, entry.w, q.light);
-        value -= lightsThrough(q.light, uStackExponent[j], subtracted);
+        vec3 value = heldRead(r, q.light, q.entry, subtracted);
         sumA += q.weightA * value;
         sumB += q.weightB * value;
         weightA += q.weightA;
@@ -124,27 +148,27 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     }
     for (int k = held; k < count; ++k) {
         LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
-        float shown = q.shown;
-        vec3 value;
-        if (r.useStack && q.entry >= r.entries.x) {
-            int j = min(q.entry, r.entries.y);
-            shown = uStackExponent[j];
-            value = stackEntryAt(j, q.light);
-        } else {
-            // The chain at the level that holds the lobe the footprint shows (phong.h,
-            // regularScheduleLevel): a near-mirror lookup reads the base, not a blurred level the
-            // hardware's footprint would pick (a level's lobe is 3.6 of its texels wide).
-            float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
-            value = textureLod(uEnvironment, q.light, level).rgb;
-        }
-        // The lights in that lobe, shaded exactly below instead.
-        value -= lightsThrough(q.light, shown, apart);
+        vec3 value = chainRead(r, q.light, q.shown, q.entry, apart);
         sumA += q.weightA * value;
         sumB += q.weightB * value;
         weightA += q.weightA;
         weightB += q.weightB;
     }
-    vec3 lookups = weight * (weightA > 0.0 ? sumA / weightA : vec3(0.0)) + edgeWeight * (weightB > 0.0 ? sumB / weightB : vec3(0.0));
+    vec3 meanA = weightA > 0.0 ? sumA / weightA : vec3(0.0), meanB = weightB > 0.0 ? sumB / weightB : vec3(0.0);
+    // The mean lobe: one read, from the stack as the lookups read it, not kept above the horizon
+    // (its direction is the clamped lobe's mean already).
+    int meanReads = r.meanShare > 0.0 ? 1 : 0;
+    for (int k = 0; k < meanReads; ++k) {
+        vec4 m = ggxMeanLobe(sqrt(r.alpha), cosView);
+        float u = 1.0 / (m.w + 2.0) + footprint;
+        float shown = max(1.0 / u - 2.0, 0.0);
+        vec3 light = normalize(m.x * t + m.z * r.normal);
+        int entry = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
+        vec3 value = r.held ? heldRead(r, light, entry, subtracted) : chainRead(r, light, shown, entry, apart);
+        meanA = mix(meanA, value, r.meanShare);
+        meanB = mix(meanB, value, r.meanShare);
+    }
+    vec3 lookups = weight * meanA + edgeWeight * meanB;
     return lookups + layer * lightsSpecular(r.normal, t, b, r.view, r.alpha, f0, f90, apart);
 }
 

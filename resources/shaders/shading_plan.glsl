@@ -58,6 +58,8 @@ struct LayerRead {
     bool held;               // READ_GGX: the stack holds its lookups (lobes.h, ggxLookupsHeld; object_pass.cpp
                              // sets it only where the stack is read)
     bool remainder;          // READ_GGX, held: and the remainder's entries, without the bright lights
+    int lookups;             // READ_GGX: how many (lobes.h, ggxLayerLookups)
+    float meanShare;         // READ_GGX: how much reads the mean lobe instead (ggx_sampling.h, meanLobeShare)
 };
 
 struct FragmentPlan {
@@ -94,15 +96,19 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.entries = ivec2(0);
     r.held = false;
     r.remainder = false;
+    r.lookups = 1;
+    r.meanShare = 0.0;
     return r;
 }
 
 LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries,
-                  bool held, bool remainder) {
+                  bool held, bool remainder, int lookups, float meanShare) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
     g.entries = entries;
     g.held = held;
     g.remainder = remainder;
+    g.lookups = lookups;
+    g.meanShare = meanShare;
     g.normal = normal;
     g.view = view;
     g.alpha = roughness * roughness;
@@ -197,10 +203,12 @@ FragmentPlan planFragment() {
 #endif
     layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
                    p.wCoatEdge, p.coatWeight, p.compensation);
-    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder);
+    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder, uSpecularLookups,
+                         uSpecularMeanShare);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
-    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld, uCoatRemainder) : noRead();
+    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld, uCoatRemainder,
+                                         uCoatLookups, uCoatMeanShare) : noRead();
     return p;
 #endif
 }

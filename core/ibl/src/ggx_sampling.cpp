@@ -114,6 +114,8 @@ GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int s
     const double mu = std::max(cosView, kLeastCosView);
     const glm::dvec3 v(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
     GgxAlbedoTable::Albedo sum;
+    glm::dvec3 mean(0.0);
+    double weights = 0.0;
     for (int i = 0; i < samples; ++i)
         for (int j = 0; j < samples; ++j) {
             // Specular: the VNDF estimator f·cos/pdf = F·G2/G1, split by F0.
@@ -121,6 +123,8 @@ GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int s
             const GgxLookup s = ggxLookup(alpha, v, u);
             sum.a += s.weight * (1.0 - s.fresnelEdge);
             sum.b += s.weight * s.fresnelEdge;
+            mean += s.weight * s.light;
+            weights += s.weight;
             // Diffuse: cosine-weighted directions, (1 − v·h)⁵ averaged (the cosine/π is the pdf).
             const double r = std::sqrt(u.x), phi = 2.0 * std::numbers::pi * u.y;
             const glm::dvec3 l(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u.x)));
@@ -132,10 +136,15 @@ GgxAlbedoTable::Albedo ggxAlbedoIntegral(double roughness, double cosView, int s
     sum.a /= n;
     sum.b /= n;
     sum.diffuseEdge /= n;
+    if (weights > 0.0) {
+        sum.meanX = mean.x / weights;
+        sum.meanZ = mean.z / weights;
+    }
     return sum;
 }
 
-GgxAlbedoTable::GgxAlbedoTable(int samples) : nodes_(3u * kRoughnessSteps * kCosSteps) {
+GgxAlbedoTable::GgxAlbedoTable(int samples)
+    : nodes_(3u * kRoughnessSteps * kCosSteps), meanNodes_(2u * kRoughnessSteps * kCosSteps) {
     parallelFor(0, kRoughnessSteps, [&](int row) {
         const double roughness = static_cast<double>(row) / (kRoughnessSteps - 1);
         for (int col = 0; col < kCosSteps; ++col) {
@@ -144,6 +153,9 @@ GgxAlbedoTable::GgxAlbedoTable(int samples) : nodes_(3u * kRoughnessSteps * kCos
             nodes_[at] = static_cast<float>(e.a);
             nodes_[at + 1] = static_cast<float>(e.b);
             nodes_[at + 2] = static_cast<float>(e.diffuseEdge);
+            const std::size_t meanAt = 2u * (static_cast<std::size_t>(row) * kCosSteps + col);
+            meanNodes_[meanAt] = static_cast<float>(e.meanX);
+            meanNodes_[meanAt + 1] = static_cast<float>(e.meanZ);
         }
     });
 }
@@ -159,16 +171,47 @@ GgxAlbedoTable::Albedo GgxAlbedoTable::at(double roughness, double cosView) cons
     const int x0 = std::min(static_cast<int>(x), kCosSteps - 2);
     const int y0 = std::min(static_cast<int>(y), kRoughnessSteps - 2);
     const double fx = x - x0, fy = y - y0;
-    auto node = [&](int row, int col, int c) {
-        return static_cast<double>(nodes_[3u * (static_cast<std::size_t>(row) * kCosSteps + col) + c]);
+    auto bilinear = [&](const std::vector<float>& nodes, std::size_t stride, std::size_t c) {
+        auto node = [&](int row, int col) {
+            return static_cast<double>(nodes[stride * (static_cast<std::size_t>(row) * kCosSteps + col) + c]);
+        };
+        const double top = node(y0, x0) * (1 - fx) + node(y0, x0 + 1) * fx;
+        const double bottom = node(y0 + 1, x0) * (1 - fx) + node(y0 + 1, x0 + 1) * fx;
+        return top * (1 - fy) + bottom * fy;
     };
-    double out[3];
-    for (int c = 0; c < 3; ++c) {
-        const double top = node(y0, x0, c) * (1 - fx) + node(y0, x0 + 1, c) * fx;
-        const double bottom = node(y0 + 1, x0, c) * (1 - fx) + node(y0 + 1, x0 + 1, c) * fx;
-        out[c] = top * (1 - fy) + bottom * fy;
+    Albedo out;
+    out.a = bilinear(nodes_, 3, 0);
+    out.b = bilinear(nodes_, 3, 1);
+    out.diffuseEdge = bilinear(nodes_, 3, 2);
+    out.meanX = bilinear(meanNodes_, 2, 0);
+    out.meanZ = bilinear(meanNodes_, 2, 1);
+    return out;
+}
+
+MeanLobe meanLobe(const GgxAlbedoTable::Albedo& albedo) {
+    const glm::dvec3 mean(albedo.meanX, 0.0, albedo.meanZ);
+    const double length = glm::length(mean);
+    MeanLobe lobe;
+    if (!(length > 0.0)) return lobe;
+    lobe.direction = mean / length;
+    lobe.exponent = length < 1.0 ? std::max(1.0 / (1.0 - length) - 2.0, 0.0) : std::numeric_limits<double>::infinity();
+    return lobe;
+}
+
+double meanLobeShare(double roughness) {
+    if (!(roughness > kMeanLobeFrom)) return 0.0;
+    return std::min((roughness - kMeanLobeFrom) / (kMeanLobeAll - kMeanLobeFrom), 1.0);
+}
+
+ExponentRange meanLobeExponentRange(double roughness) {
+    ExponentRange range{0.0, std::numeric_limits<double>::infinity()};
+    const GgxAlbedoTable& table = GgxAlbedoTable::shared();
+    for (int column = 0; column < GgxAlbedoTable::kCosSteps; ++column) {
+        const double n = meanLobe(table.at(roughness, SplitSumTable::cosViewOfColumn(column))).exponent;
+        range.sharpest = std::max(range.sharpest, n);
+        range.widest = std::min(range.widest, n);
     }
-    return {out[0], out[1], out[2]};
+    return range;
 }
 
 }  // namespace mipgloss

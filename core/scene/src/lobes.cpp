@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -98,12 +99,35 @@ LobesOfScene lobesOfScene(const Scene& scene) {
     return out;
 }
 
+// The lookups a layer reads with the scene's K (ggxLayerLookups).
+int layerLookups(const Scene& scene, const GgxInUse& layer, int baseSize) {
+    return ggxLayerLookups(layer.roughness, scene.display.ggxLookups, baseSize, layer.mapped, scene.display.brightLights);
+}
+
+}  // namespace
+
+namespace {
+
+// The lobes a layer of `roughness` reads over N·v: its K lookups' (unless it reads only its mean
+// lobe) and its mean lobe's (where it reads it: meanLobeShare).
+ExponentRange layerExponentRange(double roughness, int lookups, bool mapped) {
+    const double share = mapped ? 0.0 : meanLobeShare(roughness);
+    ExponentRange range{0.0, std::numeric_limits<double>::infinity()};
+    if (share < 1.0) range = lookupExponentRange(roughness * roughness, lookups);
+    if (share > 0.0) {
+        const ExponentRange mean = meanLobeExponentRange(roughness);
+        range.sharpest = std::max(range.sharpest, mean.sharpest);
+        range.widest = std::min(range.widest, mean.widest);
+    }
+    return range;
+}
+
 }  // namespace
 
 std::vector<int> ggxEntries(double roughness, int lookups, int baseSize, bool mapped) {
     std::vector<int> out;
     if (!(roughness > 0.0) || lookups < 1) return out;
-    const ExponentRange range = lookupExponentRange(roughness * roughness, lookups);
+    const ExponentRange range = layerExponentRange(roughness, lookups, mapped);
     const int first = firstEntryMadeAhead(baseSize);
     const auto sharp = stackBlend(range.sharpest, baseSize);
     const auto wide = stackBlend(range.widest, baseSize);
@@ -117,9 +141,10 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize) {
     if (!(roughness > 0.0) || lookups < 1) return -1;
     // Head-on, the lookups' lobes are the layer's own width; toward grazing the GGX lobe is
     // squeezed across the plane of incidence (2α·N·v) and its lookups sharpen past any stack.
-    const double alpha = roughness * roughness;
-    double sharpest = 0.0;
-    for (int k = 0; k < lookups; ++k) {
+    // The mean lobe (meanLobeShare) is read at every N·v from the stack: its sharpest too.
+    const double alpha = roughness * roughness, share = meanLobeShare(roughness);
+    double sharpest = share > 0.0 ? meanLobeExponentRange(roughness).sharpest : 0.0;
+    for (int k = 0; share < 1.0 && k < lookups; ++k) {
         const GgxLookup g = ggxLookup(alpha, glm::dvec3(0.0, 0.0, 1.0), ggxSequence(k, lookups));
         if (g.weight > 0.0) sharpest = std::max(sharpest, lookupExponent(g.pdf, lookups));
     }
@@ -129,6 +154,14 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize) {
 
 bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {
     return !mapped && ggxHeadOnEntry(roughness, lookups, baseSize) >= 0;
+}
+
+int ggxLayerLookups(double roughness, int lookups, int baseSize, bool mapped, bool lightsShaded) {
+    if (lookups <= 1 || mapped || !lightsShaded || !(roughness > 0.0)) return lookups;
+    if (roughness * roughness < lightsApartMinAlpha(baseSize) || ggxLookupsHeld(roughness, lookups, baseSize)) return lookups;
+    for (int fewer = lookups / 2; fewer >= 1; fewer /= 2)
+        if (ggxLookupsHeld(roughness, fewer, baseSize)) return fewer;
+    return lookups;
 }
 
 std::vector<int> remainderEntriesOf(double roughness, int lookups, int baseSize) {
@@ -160,7 +193,7 @@ std::vector<int> lobesInUse(const Scene& scene, int baseSize) {
         }
     }
     for (const GgxInUse& g : lobes.ggx) {
-        const std::vector<int> range = ggxEntries(g.roughness, scene.display.ggxLookups, baseSize, g.mapped);
+        const std::vector<int> range = ggxEntries(g.roughness, layerLookups(scene, g, baseSize), baseSize, g.mapped);
         entries.insert(range.begin(), range.end());
     }
     return {entries.begin(), entries.end()};
@@ -208,7 +241,7 @@ double remainderReach(const Scene& scene, int baseSize) {
     double reach = 0.0;
     if (!scene.display.brightLights) return reach;
     for (const GgxInUse& g : lobesOfScene(scene).ggx)
-        if (ggxReadsRemainder(g.roughness, scene.display.ggxLookups, baseSize, g.mapped, 0.0))
+        if (ggxReadsRemainder(g.roughness, layerLookups(scene, g, baseSize), baseSize, g.mapped, 0.0))
             reach = std::max(reach, g.roughness * g.roughness);
     return reach;
 }
@@ -218,8 +251,9 @@ std::vector<int> remainderEntries(const Scene& scene, int baseSize, const std::v
     std::set<int> entries;
     const double widest = widestLight(lights);
     for (const GgxInUse& g : lobesOfScene(scene).ggx) {
-        if (!ggxReadsRemainder(g.roughness, scene.display.ggxLookups, baseSize, g.mapped, widest)) continue;
-        const std::vector<int> range = remainderEntriesOf(g.roughness, scene.display.ggxLookups, baseSize);
+        const int lookups = layerLookups(scene, g, baseSize);
+        if (!ggxReadsRemainder(g.roughness, lookups, baseSize, g.mapped, widest)) continue;
+        const std::vector<int> range = remainderEntriesOf(g.roughness, lookups, baseSize);
         entries.insert(range.begin(), range.end());
     }
     return {entries.begin(), entries.end()};

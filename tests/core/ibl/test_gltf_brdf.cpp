@@ -128,6 +128,59 @@ TEST(GgxAlbedoTable, HoldsTheKnownAlbedosOfAWhiteMetal) {
     EXPECT_NEAR(table.at(0.0, 1.0).a, 1.0, 1e-6);
 }
 
+TEST(GgxAlbedoTable, HoldsTheLobesMeanLightDirectionAsBruteForceQuadratureGivesIt) {
+    // ∫ l·D·V·cos / ∫ D·V·cos over the hemisphere by (cos θ, φ) quadrature: the first moment the
+    // mean lobe reads (meanLobe). Tolerance 0.003 (the table's bilinear reading between nodes).
+    const GgxAlbedoTable& table = GgxAlbedoTable::shared();
+    for (double r : {0.5, 0.75, 0.9, 1.0})
+        for (double mu : {0.1, 0.35, 0.8, 1.0}) {
+            const double alpha = r * r;
+            const glm::dvec3 v = viewAt(mu);
+            double whole = 0.0;
+            glm::dvec3 moment(0.0);
+            hemisphere([&](const glm::dvec3& l) {
+                const glm::dvec3 h = glm::normalize(l + v);
+                const double dvc = ggxDistribution(alpha, h.z) * smithVisibility(alpha, l.z, mu) * l.z;
+                whole += dvc;
+                moment += dvc * l;
+                return 0.0;
+            }, 800);
+            const GgxAlbedoTable::Albedo e = table.at(r, mu);
+            EXPECT_NEAR(e.meanX, moment.x / whole, 0.003) << "r " << r << " N·v " << mu;
+            EXPECT_NEAR(e.meanZ, moment.z / whole, 0.003) << "r " << r << " N·v " << mu;
+            // The mean lobe: its direction the mean's, its mean cosine 1 − 1/(n + 2) the mean's length.
+            const MeanLobe lobe = meanLobe(e);
+            EXPECT_NEAR(lobe.direction.x * std::hypot(e.meanX, e.meanZ), e.meanX, 1e-9);
+            EXPECT_NEAR(1.0 - 1.0 / (lobe.exponent + 2.0), std::hypot(e.meanX, e.meanZ), 1e-9);
+        }
+}
+
+TEST(GgxAlbedoTable, AtRoughnessOneTheMeanLobeIsAboutTheNormalAtEveryView) {
+    // At α = 1 GGX's D is 1/π for every half vector, and D·V·cos over l is G2(v, l)/(4 N·v), which
+    // depends on l's angle from N alone: the lobe is symmetric about N whatever v is.
+    const GgxAlbedoTable& table = GgxAlbedoTable::shared();
+    for (double mu : {0.02, 0.1, 0.35, 0.8, 1.0}) {
+        const MeanLobe lobe = meanLobe(table.at(1.0, mu));
+        EXPECT_NEAR(lobe.direction.z, 1.0, 1e-5) << "N·v " << mu;
+    }
+    // And a smoother layer's mean leans away from v (toward R), less toward grazing than R does.
+    const MeanLobe half = meanLobe(table.at(0.5, 0.5));
+    EXPECT_LT(half.direction.x, -0.1);
+    EXPECT_GT(half.direction.x, -std::sqrt(0.75)) << "bent toward N from R";
+}
+
+TEST(GgxAlbedoTable, MeanLobeIsReadFromRoughnessNineTenthsAndBlendedFromEightTenths) {
+    EXPECT_EQ(meanLobeShare(0.5), 0.0);
+    EXPECT_EQ(meanLobeShare(kMeanLobeFrom), 0.0);
+    EXPECT_NEAR(meanLobeShare(0.5 * (kMeanLobeFrom + kMeanLobeAll)), 0.5, 1e-12);
+    EXPECT_EQ(meanLobeShare(kMeanLobeAll), 1.0);
+    EXPECT_EQ(meanLobeShare(1.0), 1.0);
+    EXPECT_EQ(meanLobeShare(std::nan("")), 0.0);
+    const ExponentRange range = meanLobeExponentRange(1.0);
+    EXPECT_GE(range.widest, 0.0);
+    EXPECT_LT(range.sharpest, 1.0) << "at r 1 the lobe is about as wide as the clamped cosine";
+}
+
 TEST(GgxLookup, WeightsAverageToTheAlbedoAndLightsLeaveAboutR) {
     // Sixteen lookups of the renderer's pattern estimate the white metal's albedo within 8 %
     // (their sum is then rescaled by the table, ggx_sampling.h), and the pdf is GGX's.

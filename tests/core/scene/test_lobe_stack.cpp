@@ -312,6 +312,36 @@ TEST(RemainderStack, LayersReadItOnlyWhereEveryLightIsNarrowerThanTheirLobe) {
     EXPECT_EQ(remainderReach(scene, base), 0.0);
 }
 
+TEST(GgxLayerLookups, APolishedLayerWhoseLightsAreApartReadsTheMostLookupsTheStackHolds) {
+    // r 0.125 and 0.15 at face 128 (α 0.016, 0.023 ≥ 2/128): the stack does not hold eight of
+    // their lookups (each an eighth of the lobe, sharper than its first entry), so they read the
+    // most of 4, 2, 1 it holds: each of those is read from an entry, not the chain's base.
+    for (const auto& [roughness, base] : {std::pair{0.125, 128}, {0.15, 128}, {0.1, 256}}) {
+        SCOPED_TRACE(testing::Message() << "r " << roughness << " at face " << base);
+        ASSERT_FALSE(ggxLookupsHeld(roughness, kGgxLookups, base));
+        ASSERT_GE(roughness * roughness, lightsApartMinAlpha(base));
+        const int fewer = ggxLayerLookups(roughness, kGgxLookups, base, false, true);
+        EXPECT_LT(fewer, kGgxLookups);
+        EXPECT_EQ(kGgxLookups % fewer, 0) << "K halved";
+        EXPECT_TRUE(ggxLookupsHeld(roughness, fewer, base));
+        EXPECT_FALSE(ggxLookupsHeld(roughness, 2 * fewer, base)) << "the most it holds";
+        // What the scene makes follows: the entries of those lookups, none sharper.
+        Material polished = layered(static_cast<float>(roughness));
+        polished.useIrradiance = true;  // no diffuse lobe among the entries
+        const Scene scene = sceneOf({polished});
+        EXPECT_EQ(lobesInUse(scene, base), ggxEntries(roughness, fewer, base));
+        // Without the lights apart there is nothing to subtract: K as the display says.
+        EXPECT_EQ(ggxLayerLookups(roughness, kGgxLookups, base, false, false), kGgxLookups);
+        EXPECT_EQ(ggxLayerLookups(roughness, kGgxLookups, base, true, true), kGgxLookups) << "a roughness map: any lobe";
+    }
+    // Held layers read K; near-mirrors (α < 2/N: the lights in the environment) too.
+    EXPECT_EQ(ggxLayerLookups(0.6, kGgxLookups, 128, false, true), kGgxLookups);
+    EXPECT_EQ(ggxLayerLookups(0.2, 16, 256, false, true), 16);
+    ASSERT_LT(0.05 * 0.05, lightsApartMinAlpha(256));
+    EXPECT_EQ(ggxLayerLookups(0.05, kGgxLookups, 256, false, true), kGgxLookups);
+    EXPECT_EQ(ggxLayerLookups(0.15, 1, 128, false, true), 1);
+}
+
 TEST(RemainderStack, EntryIsTheWholeEntryLessTheLightsExcessThroughTheSameLobe) {
     const auto path = test::asset("env/sunrise.exr");
     MIPGLOSS_REQUIRE_ASSET(path);

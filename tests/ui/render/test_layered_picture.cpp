@@ -117,7 +117,8 @@ TEST_P(LayeredPicture, IsCloseToTheGltfBrdfIntegratedOverTheEnvironment) {
                 "integral relative RMS %.2f %% (bound %.0f %%)\n",
                 param.name, param.map, param.faceSize, size, object.size(), 100.0 * error, 100.0 * param.bound);
     // The bounds are today's figures with a margin (docs/material-truth.md): dielectrics 0.4–1.0 %
-    // (bound 3 %), the metallic ones 1.5–4.1 % (bound 8 %).
+    // (bound 3 %), the metallic ones 1.5–4.1 % (bound 8 %), the roughest metals (their mean lobe)
+    // bound 3–5 %.
     EXPECT_LE(error, param.bound) << param.name;
 }
 
@@ -133,7 +134,11 @@ INSTANTIATE_TEST_SUITE_P(
         LayeredCase{"red_plastic_256", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 256, 384, 0.03},
         LayeredCase{"coated_blue_64", {Rgb(0.1f, 0.2f, 0.6f), 0.3f, 0.6f, 0.04f, 1.0f, 0.25f, MaterialMaps{}}, "forest", 64, 384, 0.08},
         LayeredCase{"rough_gold_small", {Rgb(1.0f, 0.766f, 0.336f), 1.0f, 0.5f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 128, 96, 0.08},
-        LayeredCase{"red_plastic_small", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "forest", 256, 96, 0.03}),
+        LayeredCase{"red_plastic_small", {Rgb(0.7f, 0.08f, 0.05f), 0.0f, 0.4f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "forest", 256, 96, 0.03},
+        // The roughest metals read their mean lobe (ggx_sampling.h, meanLobe): eight lookups gave a
+        // soft sky's r 1 metal 6.9 %; r 0.85 reads both, blended (meanLobeShare).
+        LayeredCase{"rough_aluminium", {Rgb(0.91f, 0.92f, 0.92f), 1.0f, 1.0f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "forest", 128, 384, 0.03},
+        LayeredCase{"satin_steel_small", {Rgb(0.56f, 0.57f, 0.58f), 1.0f, 0.85f, 0.04f, 0.0f, 0.05f, MaterialMaps{}}, "sunrise", 128, 96, 0.05}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 // A dielectric's specular weight rises toward the silhouette; a metal's is coloured (its F0).

@@ -58,25 +58,33 @@ GLuint Renderer::Impl::mapSampler(const TextureSampling& sampling) {
     return s;
 }
 
-// The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum, made the
-// first time a layered material is drawn (building the table takes about 0.1 s, which no
-// single-lobe scene pays).
+// The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum and its
+// lobes' mean directions as an RG32F one on TextureUnit::LobeMean, made the first time a layered
+// material is drawn (building the table takes about 0.1 s, which no single-lobe scene pays).
 void Renderer::Impl::bindSplitSum() {
-    if (splitSumTexture == 0) {
-        const GgxAlbedoTable& table = GgxAlbedoTable::shared();
-        gl->glGenTextures(1, &splitSumTexture);
-        gl->glBindTexture(GL_TEXTURE_2D, splitSumTexture);
+    auto upload = [&](GLuint& texture, GLint internalFormat, GLenum format, const float* nodes) {
+        gl->glGenTextures(1, &texture);
+        gl->glBindTexture(GL_TEXTURE_2D, texture);
         gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, GgxAlbedoTable::kCosSteps, GgxAlbedoTable::kRoughnessSteps, 0,
-                         GL_RGB, GL_FLOAT, table.nodes().data());
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, GgxAlbedoTable::kCosSteps, GgxAlbedoTable::kRoughnessSteps, 0,
+                         format, GL_FLOAT, nodes);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    };
+    if (splitSumTexture == 0) {
+        const GgxAlbedoTable& table = GgxAlbedoTable::shared();
+        upload(splitSumTexture, GL_RGB32F, GL_RGB, table.nodes().data());
+        upload(lobeMeanTexture, GL_RG32F, GL_RG, table.meanNodes().data());
     }
-    gl->glActiveTexture(GL_TEXTURE0 + unitIndex(TextureUnit::SplitSum));
-    gl->glBindTexture(GL_TEXTURE_2D, splitSumTexture);
-    gl->glBindSampler(unitIndex(TextureUnit::SplitSum), 0);
+    auto bind = [&](TextureUnit unit, GLuint texture) {
+        gl->glActiveTexture(GL_TEXTURE0 + unitIndex(unit));
+        gl->glBindTexture(GL_TEXTURE_2D, texture);
+        gl->glBindSampler(unitIndex(unit), 0);
+    };
+    bind(TextureUnit::SplitSum, splitSumTexture);
+    bind(TextureUnit::LobeMean, lobeMeanTexture);
     gl->glActiveTexture(GL_TEXTURE0);
 }
 

@@ -35,9 +35,14 @@ struct Renderer::Impl::LayeredUniforms {
           specularRemainder(p.uniformLocation("uSpecularRemainder")),
           coatRemainder(p.uniformLocation("uCoatRemainder")),
           specularHeld(p.uniformLocation("uSpecularHeld")),
-          coatHeld(p.uniformLocation("uCoatHeld")) {}
+          coatHeld(p.uniformLocation("uCoatHeld")),
+          specularLookups(p.uniformLocation("uSpecularLookups")),
+          coatLookups(p.uniformLocation("uCoatLookups")),
+          specularMeanShare(p.uniformLocation("uSpecularMeanShare")),
+          coatMeanShare(p.uniformLocation("uCoatMeanShare")) {}
     int f0, f90, diffuseF0, diffuseColour, specularRoughness, coat, coatRoughness, useCoatStack, useDiffuseStack,
-        diffuseIrradiance, specularEntries, coatEntries, specularRemainder, coatRemainder, specularHeld, coatHeld;
+        diffuseIrradiance, specularEntries, coatEntries, specularRemainder, coatRemainder, specularHeld, coatHeld,
+        specularLookups, coatLookups, specularMeanShare, coatMeanShare;
 };
 
 // The uniforms a single-lobe material shares with a layered one's specular layer.
@@ -167,7 +172,7 @@ bool Renderer::Impl::bindMaps(const MapUniforms& u, const Layers& l) {
 }
 
 // Sets a layered material's uniforms and binds its three lookups.
-Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady, int lookups) {
+Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms, const Material& m, bool irradianceReady, int lookups, bool lightsShaded) {
     bindSplitSum();
     LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
     bindMaps(mapUniforms, m.layers);
@@ -177,10 +182,21 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     if (!plan.specular.mirror) plan.specular.minLevel = 0.0f;
     if (!plan.coat.mirror) plan.coat.minLevel = 0.0f;
     const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
-    // The entries each GGX layer's lookups read (ggxEntries), and whether the stack holds them all
-    // (else the lookups read the chain).
-    auto entryRange = [&](double roughness, bool mapped) {
-        const std::vector<int> range = ggxEntries(roughness, lookups, std::max(stackBaseSize, 1), mapped);
+    // How many lookups each GGX layer reads (fewer where a polished layer's K would be sharper than
+    // the stack: ggxLayerLookups), the entries they read (ggxEntries), and whether the stack holds
+    // them all (else the lookups read the chain).
+    const int base = std::max(stackBaseSize, 1);
+    const bool mapped = !m.layers.maps.roughness.empty();
+    const int specularLookups = ggxLayerLookups(m.layers.roughness, lookups, base, mapped, lightsShaded);
+    const int coatLookups = ggxLayerLookups(m.layers.coatRoughness, lookups, base, false, lightsShaded);
+    gl->glUniform1i(u.specularLookups, std::max(specularLookups, 1));
+    gl->glUniform1i(u.coatLookups, std::max(coatLookups, 1));
+    // A rough layer reads its mean lobe (ggx_sampling.h, meanLobeShare); a roughness map's
+    // fragments may be any roughness, so that layer reads its K lookups.
+    gl->glUniform1f(u.specularMeanShare, mapped ? 0.0f : static_cast<float>(meanLobeShare(m.layers.roughness)));
+    gl->glUniform1f(u.coatMeanShare, static_cast<float>(meanLobeShare(m.layers.coatRoughness)));
+    auto entryRange = [&](double roughness, int count, bool anyRoughness) {
+        const std::vector<int> range = ggxEntries(roughness, count, base, anyRoughness);
         if (range.empty()) return glm::ivec2(kStackSlots, kStackLast);  // none: every lookup reads the chain
         return glm::ivec2(range.front(), range.back());
     };
@@ -190,30 +206,29 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
             if (!stackHolds(stackExponent(j))) return false;
         return true;
     };
-    const glm::ivec2 specularEntries = entryRange(m.layers.roughness, !m.layers.maps.roughness.empty());
-    const glm::ivec2 coatEntries = plan.hasCoat ? entryRange(m.layers.coatRoughness, false) : glm::ivec2(kStackSlots, kStackLast);
+    const glm::ivec2 specularEntries = entryRange(m.layers.roughness, specularLookups, mapped);
+    const glm::ivec2 coatEntries = plan.hasCoat ? entryRange(m.layers.coatRoughness, coatLookups, false) : glm::ivec2(kStackSlots, kStackLast);
     const bool specular = plan.specular.readsLobeStack && holds(specularEntries);
     const bool coat = plan.hasCoat && plan.coat.readsLobeStack && holds(coatEntries);
     gl->glUniform2i(u.specularEntries, specularEntries.x, specularEntries.y);
     gl->glUniform2i(u.coatEntries, coatEntries.x, coatEntries.y);
     // Whether the stack holds every lookup of each layer (its lookups read the atlas alone), and
     // whether they read the remainder entries (no lights to subtract in them).
-    const int base = std::max(stackBaseSize, 1);
-    const bool specularHeld = specular && ggxLookupsHeld(m.layers.roughness, lookups, base, !m.layers.maps.roughness.empty());
-    const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, lookups, base);
+    const bool specularHeld = specular && ggxLookupsHeld(m.layers.roughness, specularLookups, base, mapped);
+    const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, coatLookups, base);
     gl->glUniform1i(u.specularHeld, specularHeld ? 1 : 0);
     gl->glUniform1i(u.coatHeld, coatHeld ? 1 : 0);
     // A layer reading the remainder reads its entries from ggxHeadOnEntry to its last
     // (remainderEntriesOf, without computing ggxEntries again each draw): its lookups' range.
     const double widest = environment ? widestLight(environment->lights) : 0.0;
-    auto remainderRange = [&](bool held, double roughness, glm::ivec2 entries) -> std::optional<glm::ivec2> {
-        if (!held || !ggxReadsRemainder(roughness, lookups, base, false, widest)) return std::nullopt;
-        const glm::ivec2 range(ggxHeadOnEntry(roughness, lookups, base), entries.y);
+    auto remainderRange = [&](bool held, double roughness, int count, glm::ivec2 entries) -> std::optional<glm::ivec2> {
+        if (!held || !ggxReadsRemainder(roughness, count, base, false, widest)) return std::nullopt;
+        const glm::ivec2 range(ggxHeadOnEntry(roughness, count, base), entries.y);
         if (!remainderHolds(range.x, range.y)) return std::nullopt;
         return range;
     };
-    const auto specularRemainder = remainderRange(specularHeld, m.layers.roughness, specularEntries);
-    const auto coatRemainder = remainderRange(coatHeld, m.layers.coatRoughness, coatEntries);
+    const auto specularRemainder = remainderRange(specularHeld, m.layers.roughness, specularLookups, specularEntries);
+    const auto coatRemainder = remainderRange(coatHeld, m.layers.coatRoughness, coatLookups, coatEntries);
     gl->glUniform1i(u.specularRemainder, specularRemainder ? 1 : 0);
     gl->glUniform1i(u.coatRemainder, coatRemainder ? 1 : 0);
     if (specularRemainder) gl->glUniform2i(u.specularEntries, specularRemainder->x, specularRemainder->y);
@@ -271,7 +286,6 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
                     static_cast<float>(regularScheduleLevel(0.0, environmentFaceSize)));
     gl->glUniform1f(program.uniformLocation("uLastLevel"), static_cast<float>(std::max(environmentLevels - 1, 0)));
     const bool irradianceReady = uploadedIrradiance != nullptr;
-    gl->glUniform1i(program.uniformLocation("uGgxLookups"), std::max(scene.display.ggxLookups, 1));
     gl->glUniform1i(program.uniformLocation("uCompensated"), scene.display.scattering == Scattering::Compensated);
     // The environment's bright lights (bright_lights.h), in its frame, as the shaders read them.
     {
@@ -311,7 +325,8 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
         gl->glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(rotation));
         ObjectRead read;
         if (m.layered) {
-            read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady, scene.display.ggxLookups);
+            read = bindLayered(layeredUniforms, lobeUniforms, mapUniforms, m, irradianceReady, scene.display.ggxLookups,
+                               scene.display.brightLights);
         } else {
             const ObjectLookup plan = planLookup(m, irradianceReady, environmentFaceSize);
             const bool stack = plan.readsLobeStack && (plan.sharperAtGrazing ? stackCurrent() : stackServes(plan.exponent));

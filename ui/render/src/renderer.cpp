@@ -104,6 +104,8 @@ void Renderer::destroy() {
     d.gl->glDeleteTextures(1, &d.irradianceTexture);
     d.gl->glDeleteTextures(1, &d.splitSumTexture);
     d.splitSumTexture = 0;
+    d.gl->glDeleteTextures(1, &d.lobeMeanTexture);
+    d.lobeMeanTexture = 0;
     d.gl->glDeleteVertexArrays(1, &d.emptyVao);
     d.objectProgram.reset();
     d.backgroundProgram.reset();

@@ -68,6 +68,7 @@ struct Renderer::Impl {
     std::shared_ptr<const TextureCache> textures;  // setTextures: the decoded images maps read
     float maxAnisotropy = -1.0f;  // queried once: 0 when the GL has no anisotropic filtering
     GLuint splitSumTexture = 0;      // the split-sum table (specular.h), once a layered material is drawn
+    GLuint lobeMeanTexture = 0;      // its lobes' mean directions (ggx_sampling.h, meanLobe), likewise
     GLuint whiteTexture = 0;         // 1×1 white: what a map unit holds when the material has no such map
 
     std::map<int, GLuint> samplers;  // level key -> sampler with GL_TEXTURE_MIN_LOD = that level
@@ -160,9 +161,10 @@ struct Renderer::Impl {
     // A layered material's maps: binds each decoded one to its unit (white where none) and sets
     // the factors. Returns whether the roughness map is read (each fragment its own lobe).
     bool bindMaps(const MapUniforms& u, const Layers& l);
-    // Sets a layered material's uniforms and binds its three lookups.
+    // Sets a layered material's uniforms and binds its three lookups; `lookups` is the display's K
+    // and `lightsShaded` whether it shades the bright lights (each layer's lookups: ggxLayerLookups).
     ObjectRead bindLayered(const LayeredUniforms& u, const LobeUniforms& lobeUniforms, const MapUniforms& mapUniforms,
-                           const Material& m, bool irradianceReady, int lookups);
+                           const Material& m, bool irradianceReady, int lookups, bool lightsShaded);
     // Draws the visible objects with `program` (object.frag, or aov.frag when `aov`), each from
     // the lobe stack where it holds its lobes, else from the chain at the level standing in for it.
     // Whether an object's layered material is drawn with the maps' program: it has maps, or its

@@ -16,6 +16,7 @@ enum class TextureUnit : GLuint {
     Stack = 2,         // uStack: the lobe stack's atlas
     SplitSum = 3,      // uGgxAlbedo: the GGX albedo table (ggx_sampling.h)
     CoatChain = 4,     // uCoatChain: the chain at the coat's level (or the mirror)
+    LobeMean = 5,      // uGgxLobeMean: the GGX lobe's mean light direction (ggx_sampling.h, meanLobe)
     DiffuseChain = 6,  // uDiffuseChain: the chain at the n = 1 level
     FirstMap = 8,      // the material's texture maps, kMapCount units from here (material_maps.glsl)
 };
@@ -31,12 +32,13 @@ struct SamplerUnit {
     const char* uniform;
     GLuint unit;
 };
-inline constexpr std::array<SamplerUnit, 13> kSamplerUnits{{
+inline constexpr std::array<SamplerUnit, 14> kSamplerUnits{{
     {"uEnvironment", unitIndex(TextureUnit::Chain)},
     {"uHdr", unitIndex(TextureUnit::Picture)},
     {"uIrradiance", unitIndex(TextureUnit::Irradiance)},
     {"uStack", unitIndex(TextureUnit::Stack)},
     {"uGgxAlbedo", unitIndex(TextureUnit::SplitSum)},
+    {"uGgxLobeMean", unitIndex(TextureUnit::LobeMean)},
     {"uCoatChain", unitIndex(TextureUnit::CoatChain)},
     {"uDiffuseChain", unitIndex(TextureUnit::DiffuseChain)},
     {"uBaseColorMap", mapUnit(0)},

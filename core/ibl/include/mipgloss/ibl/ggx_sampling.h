@@ -79,16 +79,43 @@ public:
 
     struct Albedo {
         double a = 0.0, b = 0.0, diffuseEdge = 0.0;
+        // The specular lobe's mean light direction for F = 1, ∫ l·D V cos dω / ∫ D V cos dω, in the
+        // frame N = z, v = (sin θ, 0, cos θ): not unit; its length is the lobe's mean cosine about
+        // its direction (meanLobe).
+        double meanX = 0.0, meanZ = 1.0;
         double specular(double f0) const { return f0 * a + b; }
     };
     Albedo at(double roughness, double cosView) const;
     // The nodes as (A, B, Bd) triples, N·v column fastest: an RGB texture with s from
     // SplitSumTable::columnOfCosView and t = roughness.
     std::span<const float> nodes() const { return nodes_; }
+    // The mean light directions (meanX, meanZ) at the same nodes: an RG texture read as nodes().
+    std::span<const float> meanNodes() const { return meanNodes_; }
 
 private:
-    std::vector<float> nodes_;
+    std::vector<float> nodes_, meanNodes_;
 };
+
+// The one Phong lobe with the GGX lobe's first moment (the mean resultant of its light directions,
+// Albedo::meanX/meanZ): its direction that mean's, its exponent the one whose mean cosine is its
+// length, 1/(n + 2) = 1 − |m| (phong.h: a normalized Phong lobe's mean of 1 − cos θ). A linear
+// environment is read exactly by it; a rough layer's whole lobe is nearly a Phong lobe (at α = 1
+// GGX's D is uniform over half vectors) and read by it better than by K lookups: measured on the
+// CPU model with exact lobes (docs/material-truth.md, "The roughest layers: one lobe"), white metal
+// r 1 on seven maps 0.45–1.4 % against K = 8's 3.3–9.8 %; at r 0.6–0.8 it is worse on some.
+struct MeanLobe {
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // unit, frame N = z, v = (sin θ, 0, cos θ)
+    double exponent = 0.0;
+};
+MeanLobe meanLobe(const GgxAlbedoTable::Albedo& albedo);
+// How much of a GGX layer of `roughness` reads its mean lobe instead of its K lookups: 0 up to
+// r = 0.8, 1 from 0.9, linear between (both read there, so a slider moves the picture smoothly).
+// The range is where the CPU model measured the mean lobe better on every one of seven maps (0.9)
+// and worse on half of them (0.8).
+inline constexpr double kMeanLobeFrom = 0.8, kMeanLobeAll = 0.9;
+double meanLobeShare(double roughness);
+// The sharpest and widest mean lobe of a layer of `roughness` over N·v (the table's columns).
+ExponentRange meanLobeExponentRange(double roughness);
 
 // Multiple scattering (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time
 // Image-based Lighting", JCGT 8(1)): single-scattering GGX loses the light that bounces between

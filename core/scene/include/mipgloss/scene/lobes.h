@@ -117,6 +117,17 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize);
 // entry (toward grazing, where the GGX lobe is squeezed across the plane of incidence, 2α·N·v)
 // reads that entry.
 bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped = false);
+// The lookups a GGX layer reads per fragment, of the display's `lookups` (K): K, unless the layer
+// shades the bright lights apart (`lightsShaded` and α ≥ lightsApartMinAlpha) and the stack does
+// not hold its K lookups (ggxLookupsHeld): then the most of K/2, K/4, …, 1 that it holds (K when
+// it holds none; with a roughness map, K). Why: each such lookup takes the lights in its lobe out
+// of what it reads (object.frag, lightsThrough, as a disc through the lookup's Phong lobe). A
+// lookup sharper than the stack's first entry reads the chain's base instead, whose bilinear texels
+// hold a light otherwise than that disc does: one pixel in a few hundred of a polished layer (r
+// 0.125–0.15 at face 128, 0.1 at 256) read a sun or a soft box 5–40 % wrong. Fewer, wider lookups
+// read entries whose lobe is the one subtracted. Chosen on `city` (docs/material-truth.md, "How
+// many lookups a polished layer reads"); it also halves those layers' frame.
+int ggxLayerLookups(double roughness, int lookups, int baseSize, bool mapped, bool lightsShaded);
 // The remainder entries such a layer reads: ggxEntries from ggxHeadOnEntry on (none when not
 // held). Its lookups sharper than that, toward grazing, read that entry: the sharp entries
 // (faces up to 512, seconds each) are made once, for the whole environment, not twice.
