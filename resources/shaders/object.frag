@@ -83,6 +83,19 @@ vec3 heldRead(LayerRead r, vec3 light, int entry, int subtracted) {
     return atlasRead(e.xyz, e.w, light) - lightsThrough(light, uStackExponent[j], subtracted);
 }
 
+// A held lobe n blended between the layer's two entries either side of it (lobe_stack.glsl,
+// stackBlendOf: the blend keeps n's mean cosine), each read as heldRead reads it. The mean lobe
+// reads so: its exponent moves smoothly over the sphere, and one entry (2^¼ apart in n + 1) drew a
+// ring where the nearest changed.
+vec3 heldBlend(LayerRead r, vec3 light, float n, int subtracted) {
+    int j = clamp(int(floor(exponentLambda(n) * float(STACK_STEPS_PER_LEVEL))), r.entries.x, r.entries.y);
+    if (j > r.entries.x && uStackExponent[j] < n) --j;
+    int wider = min(j + 1, r.entries.y);
+    float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[j] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
+    float w = u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+    return mix(heldRead(r, light, j, subtracted), heldRead(r, light, wider, subtracted), w);
+}
+
 // A lookup's value where the stack may not hold it: its entry where the stack holds it, else the
 // chain at the level that holds the lobe the footprint shows (phong.h, regularScheduleLevel): a
 // near-mirror lookup reads the base, not a blurred level the hardware's footprint would pick (a
@@ -164,7 +177,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
         float shown = max(1.0 / u - 2.0, 0.0);
         vec3 light = normalize(m.x * t + m.z * r.normal);
         int entry = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
-        vec3 value = r.held ? heldRead(r, light, entry, subtracted) : chainRead(r, light, shown, entry, apart);
+        vec3 value = r.held ? heldBlend(r, light, shown, subtracted) : chainRead(r, light, shown, entry, apart);
         meanA = mix(meanA, value, r.meanShare);
         meanB = mix(meanB, value, r.meanShare);
     }
