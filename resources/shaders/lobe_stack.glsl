@@ -56,6 +56,13 @@ int stackSharperIndex(float n) {
     return j;
 }
 
+// The wider neighbour's weight in the blend of entries `sharper` and `wider` that keeps lobe n's
+// mean cosine (lobes.h, stackBlend): linear in 1/(n + 2), the lobe's mean of 1 − cos θ.
+float stackBlendWeight(float n, int sharper, int wider) {
+    float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[sharper] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
+    return u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+}
+
 // n's neighbours and the wider one's weight; false when the stack does not hold both (n sharper
 // than its top entry, or an entry not yet made).
 bool stackBlendOf(float n, out int sharper, out float weight) {
@@ -64,8 +71,7 @@ bool stackBlendOf(float n, out int sharper, out float weight) {
     if (!stackRange(n)) return false;
     int j = stackSharperIndex(n);
     int wider = min(j + 1, STACK_LAST);
-    float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[j] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
-    weight = u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+    weight = stackBlendWeight(n, j, wider);
     // Float rounding at an entry: a weight within 1e-4 of 0 or 1 reads that entry alone, so a
     // lobe on an entry never needs the neighbour the C++ side did not ask for.
     if (weight > 0.9999) {

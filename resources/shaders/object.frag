@@ -88,11 +88,9 @@ vec3 heldRead(LayerRead r, vec3 light, int entry, int subtracted) {
 // reads so: its exponent moves smoothly over the sphere, and one entry (2^¼ apart in n + 1) drew a
 // ring where the nearest changed.
 vec3 heldBlend(LayerRead r, vec3 light, float n, int subtracted) {
-    int j = clamp(int(floor(exponentLambda(n) * float(STACK_STEPS_PER_LEVEL))), r.entries.x, r.entries.y);
-    if (j > r.entries.x && uStackExponent[j] < n) --j;
+    int j = clamp(stackSharperIndex(n), r.entries.x, r.entries.y);
     int wider = min(j + 1, r.entries.y);
-    float u = 1.0 / (n + 2.0), u0 = 1.0 / (uStackExponent[j] + 2.0), u1 = 1.0 / (uStackExponent[wider] + 2.0);
-    float w = u1 > u0 ? clamp((u - u0) / (u1 - u0), 0.0, 1.0) : 0.0;
+    float w = stackBlendWeight(n, j, wider);
     return mix(heldRead(r, light, j, subtracted), heldRead(r, light, wider, subtracted), w);
 }
 

@@ -104,10 +104,6 @@ int layerLookups(const Scene& scene, const GgxInUse& layer, int baseSize) {
     return ggxLayerLookups(layer.roughness, scene.display.ggxLookups, baseSize, layer.mapped, scene.display.brightLights);
 }
 
-}  // namespace
-
-namespace {
-
 // The lobes a layer of `roughness` reads over N·v: its K lookups' (unless it reads only its mean
 // lobe) and its mean lobe's (where it reads it: meanLobeShare).
 ExponentRange layerExponentRange(double roughness, int lookups, bool mapped) {
