@@ -29,6 +29,11 @@ uniform bool uCoatRemainder;
 // its lookups then read the atlas alone (object.frag, readGgx), a sharper one its first entry.
 uniform bool uSpecularHeld;
 uniform bool uCoatHeld;
+// Whether a held layer's lookups are the eight lobes fitted to its GGX lobe (ggx_fitted_lobes.h,
+// readsFittedLobes), read from the fitted nodes: layer 2k (q1, q2, η), layer 2k + 1 (weightA, weightB).
+uniform bool uSpecularFitted;
+uniform bool uCoatFitted;
+uniform sampler2DArray uGgxFittedLobes;  // TEXTURE_UNIT_FITTED_LOBES
 // The environment's bright texels as points of energy (bright_lights.h), in its frame: shaded with
 // the exact BRDF, and taken out of every lookup (each lookup's lobe would have blurred them).
 uniform vec4 uLightDirection[MAX_BRIGHT_LIGHTS];  // xyz: unit direction, w: its angular radius
@@ -128,6 +133,33 @@ GgxLookup ggxLookup(float alpha, vec3 v, int k, int count) {
     float d = h.z * h.z * (a2 - 1.0) + 1.0;
     g.pdf = alpha > 0.0 ? g1 * a2 / (PI * d * d) / (4.0 * cv) : intBitsToFloat(0x7f800000);
     return g;
+}
+
+// Where (roughness, N·v) is on the fitted lobes' grid (ggx_fitted_lobes.h, gridPoint): the
+// texture coordinates of its bilinear read, x = 1 − √(1 − θ/(π/2)) across, roughness down.
+vec2 fittedLobeCoordinates(float roughness, float cosView) {
+    float theta = acos(clamp(cosView, 0.0, 1.0));
+    float x = 1.0 - sqrt(max(0.0, 1.0 - theta / HALF_PI));
+    float row = clamp((roughness - FITTED_LEAST_ROUGHNESS) / FITTED_ROUGHNESS_STEP, 0.0, float(FITTED_ROUGHNESS_NODES - 1));
+    return vec2((x * float(FITTED_COS_NODES - 1) + 0.5) / float(FITTED_COS_NODES), (row + 0.5) / float(FITTED_ROUGHNESS_NODES));
+}
+
+// Fitted lobe k at the grid point `at` for α and the view v = (sin θ, 0, cos θ) (ggx_fitted_lobes.h,
+// fittedLobes): its direction in the frame N = z, normalize(R + α(q1·e1 + q2·e2)) with
+// e1 = (cos θ, 0, sin θ), e2 = y; its exponent e^(−η)/α² − 2; its weights (F0 part, edge part).
+struct FittedLobe {
+    vec3 direction;
+    float exponent;
+    vec2 weights;
+};
+
+FittedLobe fittedLobe(vec2 at, float alpha, vec3 v, int k) {
+    vec4 shape = texture(uGgxFittedLobes, vec3(at, float(2 * k)));
+    FittedLobe f;
+    f.weights = texture(uGgxFittedLobes, vec3(at, float(2 * k + 1))).xy;
+    f.direction = normalize(vec3(-v.x, 0.0, v.z) + alpha * (shape.x * vec3(v.z, 0.0, v.x) + vec3(0.0, shape.y, 0.0)));
+    f.exponent = max(exp(-shape.z) / (alpha * alpha) - 2.0, 0.0);
+    return f;
 }
 
 // The lobe lookup k reads: 2π·K·pdf/kSampleSpread − 1 (ggx_sampling.h, lookupExponent).

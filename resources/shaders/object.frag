@@ -148,7 +148,24 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     int apart = split ? uLightCount : 0, subtracted = subtract ? uLightCount : 0;
     // The footprint widens every lookup's lobe the same way (lobes.h, footprintExponent).
     float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
-    int held = r.held ? count : 0;
+    // Held layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the
+    // visible normals; the chain's loop starts where the held ones end.
+    int fittedCount = r.held && r.fitted ? count : 0;
+    int held = r.held && !r.fitted ? count : 0;
+    int chainFrom = r.held ? count : 0;
+    vec2 fittedAt = fittedLobeCoordinates(sqrt(r.alpha), cosView);
+    for (int k = 0; k < fittedCount; ++k) {
+        FittedLobe f = fittedLobe(fittedAt, r.alpha, v, k);
+        float u = 1.0 / (f.exponent + 2.0) + footprint;
+        float shown = max(1.0 / u - 2.0, 0.0);
+        vec3 light = normalize(f.direction.x * t + f.direction.y * b + f.direction.z * r.normal);
+        int entry = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
+        vec3 value = heldRead(r, light, entry, subtracted);
+        sumA += f.weights.x * value;
+        sumB += f.weights.y * value;
+        weightA += f.weights.x;
+        weightB += f.weights.y;
+    }
     for (int k = 0; k < held; ++k) {
         LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
         vec3 value = heldRead(r, q.light, q.entry, subtracted);
@@ -157,7 +174,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
         weightA += q.weightA;
         weightB += q.weightB;
     }
-    for (int k = held; k < count; ++k) {
+    for (int k = chainFrom; k < count; ++k) {
         LayerLookup q = layerLookup(r, v, t, b, footprint, k, count);
         vec3 value = chainRead(r, q.light, q.shown, q.entry, apart);
         sumA += q.weightA * value;

@@ -60,6 +60,7 @@ struct LayerRead {
     bool remainder;          // READ_GGX, held: and the remainder's entries, without the bright lights
     int lookups;             // READ_GGX: how many (lobes.h, ggxLayerLookups)
     float meanShare;         // READ_GGX: how much reads the mean lobe instead (ggx_sampling.h, meanLobeShare)
+    bool fitted;             // READ_GGX, held: its lookups are the fitted lobes (ggx_fitted_lobes.h)
 };
 
 struct FragmentPlan {
@@ -98,17 +99,19 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.remainder = false;
     r.lookups = 1;
     r.meanShare = 0.0;
+    r.fitted = false;
     return r;
 }
 
 LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries,
-                  bool held, bool remainder, int lookups, float meanShare) {
+                  bool held, bool remainder, int lookups, float meanShare, bool fitted) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
     g.entries = entries;
     g.held = held;
     g.remainder = remainder;
     g.lookups = lookups;
     g.meanShare = meanShare;
+    g.fitted = fitted;
     g.normal = normal;
     g.view = view;
     g.alpha = roughness * roughness;
@@ -204,11 +207,11 @@ FragmentPlan planFragment() {
     layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
                    p.wCoatEdge, p.coatWeight, p.compensation);
     p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder, uSpecularLookups,
-                         uSpecularMeanShare);
+                         uSpecularMeanShare, uSpecularFitted);
     p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
                                    : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
     p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld, uCoatRemainder,
-                                         uCoatLookups, uCoatMeanShare) : noRead();
+                                         uCoatLookups, uCoatMeanShare, uCoatFitted) : noRead();
     return p;
 #endif
 }

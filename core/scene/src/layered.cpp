@@ -1,5 +1,6 @@
 #include "mipgloss/scene/layered.h"
 
+#include "mipgloss/ibl/ggx_fitted_lobes.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/scene/material_truth.h"
 #include "mipgloss/ibl/phong.h"
@@ -90,9 +91,13 @@ std::vector<double> lambdasOf(const Material& material) {
     std::vector<double> out{specularLambda(material.layers)};
     auto lookups = [&](double roughness) {
         if (!(roughness > 0.0)) return;
-        const ExponentRange range = lookupExponentRange(roughness * roughness, kGgxLookups);
-        out.push_back(exponentToLambda(range.sharpest));
-        out.push_back(exponentToLambda(range.widest));
+        // The visible normals' (a roughness map's fragments read them) and the fitted lobes'.
+        for (const ExponentRange& range : {lookupExponentRange(roughness * roughness, kGgxLookups),
+                                           readsFittedLobes(roughness, kGgxLookups) ? fittedLobeExponentRange(roughness)
+                                                                                    : lookupExponentRange(roughness * roughness, kGgxLookups)}) {
+            out.push_back(exponentToLambda(range.sharpest));
+            out.push_back(exponentToLambda(range.widest));
+        }
     };
     lookups(material.layers.roughness);
     if (hasCoat(material.layers)) {

@@ -1,5 +1,6 @@
 #include "mipgloss/scene/lobes.h"
 
+#include "mipgloss/ibl/ggx_fitted_lobes.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 
 #include "mipgloss/ibl/builders.h"
@@ -109,7 +110,9 @@ int layerLookups(const Scene& scene, const GgxInUse& layer, int baseSize) {
 ExponentRange layerExponentRange(double roughness, int lookups, bool mapped) {
     const double share = mapped ? 0.0 : meanLobeShare(roughness);
     ExponentRange range{0.0, std::numeric_limits<double>::infinity()};
-    if (share < 1.0) range = lookupExponentRange(roughness * roughness, lookups);
+    if (share < 1.0)
+        range = ggxReadsFittedLobes(roughness, lookups, mapped) ? fittedLobeExponentRange(roughness)
+                                                               : lookupExponentRange(roughness * roughness, lookups);
     if (share > 0.0) {
         const ExponentRange mean = meanLobeExponentRange(roughness);
         range.sharpest = std::max(range.sharpest, mean.sharpest);
@@ -140,12 +143,18 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize) {
     // The mean lobe (meanLobeShare) is read at every N·v from the stack: its sharpest too.
     const double alpha = roughness * roughness, share = meanLobeShare(roughness);
     double sharpest = share > 0.0 ? meanLobeExponentRange(roughness).sharpest : 0.0;
-    for (int k = 0; share < 1.0 && k < lookups; ++k) {
+    if (share < 1.0 && ggxReadsFittedLobes(roughness, lookups, false))
+        sharpest = std::max(sharpest, fittedLobeSharpestHeadOn(roughness));
+    for (int k = 0; share < 1.0 && !ggxReadsFittedLobes(roughness, lookups, false) && k < lookups; ++k) {
         const GgxLookup g = ggxLookup(alpha, glm::dvec3(0.0, 0.0, 1.0), ggxSequence(k, lookups));
         if (g.weight > 0.0) sharpest = std::max(sharpest, lookupExponent(g.pdf, lookups));
     }
     const auto sharp = stackBlend(sharpest, baseSize);
     return sharp && sharp->sharper >= firstEntryMadeAhead(baseSize) ? sharp->sharper : -1;
+}
+
+bool ggxReadsFittedLobes(double roughness, int lookups, bool mapped) {
+    return !mapped && readsFittedLobes(roughness, lookups);
 }
 
 bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped) {

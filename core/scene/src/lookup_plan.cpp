@@ -1,6 +1,7 @@
 #include "mipgloss/scene/lookup_plan.h"
 
 #include "mipgloss/ibl/bright_lights.h"
+#include "mipgloss/ibl/ggx_fitted_lobes.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 
 #include "mipgloss/ibl/phong.h"
@@ -79,6 +80,11 @@ std::string shaderDefines() {
     defineFloat("COAT_F0", kDielectricF0);
     define("MAX_BRIGHT_LIGHTS", kMaxBrightLights);
     defineFloat("SAMPLE_SPREAD", kSampleSpread);
+    // The fitted lobes' grid (ggx_fitted_lobes.h).
+    define("FITTED_COS_NODES", kFittedCosNodes);
+    define("FITTED_ROUGHNESS_NODES", kFittedRoughnessNodes);
+    defineFloat("FITTED_LEAST_ROUGHNESS", kFittedLeastRoughness);
+    defineFloat("FITTED_ROUGHNESS_STEP", kFittedRoughnessStep);
     // The lobe stack (lobes.h, lobe_stack.glsl) and λ ↔ n (phong.h): n(λ) = 3·128²·4^−λ − 1.
     define("STACK_SLOTS", kStackSlots);
     define("STACK_STEPS_PER_LEVEL", kStackStepsPerLevel);

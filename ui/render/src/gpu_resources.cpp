@@ -2,6 +2,7 @@
 // texture maps, cube uploads, meshes and the frame's targets.
 #include "renderer_impl.h"
 
+#include "mipgloss/ibl/ggx_fitted_lobes.h"
 #include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/specular.h"
 
@@ -58,8 +59,9 @@ GLuint Renderer::Impl::mapSampler(const TextureSampling& sampling) {
     return s;
 }
 
-// The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum and its
-// lobes' mean directions as an RG32F one on TextureUnit::LobeMean, made the first time a layered
+// The GGX albedo table (ggx_sampling.h) as an RGB32F texture on TextureUnit::SplitSum, its
+// lobes' mean directions as an RG32F one on TextureUnit::LobeMean and the fitted lobes' nodes
+// (ggx_fitted_lobes.h) as an RGBA32F 2D array on TextureUnit::FittedLobes, made the first time a layered
 // material is drawn (building the table takes about 0.1 s, which no single-lobe scene pays).
 void Renderer::Impl::bindSplitSum() {
     auto upload = [&](GLuint& texture, GLint internalFormat, GLenum format, const float* nodes) {
@@ -77,6 +79,16 @@ void Renderer::Impl::bindSplitSum() {
         const GgxAlbedoTable& table = GgxAlbedoTable::shared();
         upload(splitSumTexture, GL_RGB32F, GL_RGB, table.nodes().data());
         upload(lobeMeanTexture, GL_RG32F, GL_RG, table.meanNodes().data());
+        const std::vector<float> fitted = fittedLobeLayers();
+        gl->glGenTextures(1, &fittedLobesTexture);
+        gl->glBindTexture(GL_TEXTURE_2D_ARRAY, fittedLobesTexture);
+        gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl->glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, kFittedCosNodes, kFittedRoughnessNodes, 2 * kFittedLobeCount, 0,
+                         GL_RGBA, GL_FLOAT, fitted.data());
+        gl->glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl->glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl->glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl->glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
     auto bind = [&](TextureUnit unit, GLuint texture) {
         gl->glActiveTexture(GL_TEXTURE0 + unitIndex(unit));
@@ -85,6 +97,9 @@ void Renderer::Impl::bindSplitSum() {
     };
     bind(TextureUnit::SplitSum, splitSumTexture);
     bind(TextureUnit::LobeMean, lobeMeanTexture);
+    gl->glActiveTexture(GL_TEXTURE0 + unitIndex(TextureUnit::FittedLobes));
+    gl->glBindTexture(GL_TEXTURE_2D_ARRAY, fittedLobesTexture);
+    gl->glBindSampler(unitIndex(TextureUnit::FittedLobes), 0);
     gl->glActiveTexture(GL_TEXTURE0);
 }
 

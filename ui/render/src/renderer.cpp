@@ -106,6 +106,8 @@ void Renderer::destroy() {
     d.splitSumTexture = 0;
     d.gl->glDeleteTextures(1, &d.lobeMeanTexture);
     d.lobeMeanTexture = 0;
+    d.gl->glDeleteTextures(1, &d.fittedLobesTexture);
+    d.fittedLobesTexture = 0;
     d.gl->glDeleteVertexArrays(1, &d.emptyVao);
     d.objectProgram.reset();
     d.backgroundProgram.reset();

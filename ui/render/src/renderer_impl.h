@@ -69,6 +69,7 @@ struct Renderer::Impl {
     float maxAnisotropy = -1.0f;  // queried once: 0 when the GL has no anisotropic filtering
     GLuint splitSumTexture = 0;      // the split-sum table (specular.h), once a layered material is drawn
     GLuint lobeMeanTexture = 0;      // its lobes' mean directions (ggx_sampling.h, meanLobe), likewise
+    GLuint fittedLobesTexture = 0;   // the fitted lobes' nodes (ggx_fitted_lobes.h), a 2D array, likewise
     GLuint whiteTexture = 0;         // 1×1 white: what a map unit holds when the material has no such map
 
     std::map<int, GLuint> samplers;  // level key -> sampler with GL_TEXTURE_MIN_LOD = that level

@@ -60,6 +60,7 @@ std::string textureUnitDefines() {
     define("TEXTURE_UNIT_STACK", unitIndex(TextureUnit::Stack));
     define("TEXTURE_UNIT_SPLIT_SUM", unitIndex(TextureUnit::SplitSum));
     define("TEXTURE_UNIT_LOBE_MEAN", unitIndex(TextureUnit::LobeMean));
+    define("TEXTURE_UNIT_FITTED_LOBES", unitIndex(TextureUnit::FittedLobes));
     define("TEXTURE_UNIT_COAT_CHAIN", unitIndex(TextureUnit::CoatChain));
     define("TEXTURE_UNIT_DIFFUSE_CHAIN", unitIndex(TextureUnit::DiffuseChain));
     define("TEXTURE_UNIT_FIRST_MAP", unitIndex(TextureUnit::FirstMap));

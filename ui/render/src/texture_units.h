@@ -18,6 +18,7 @@ enum class TextureUnit : GLuint {
     CoatChain = 4,     // uCoatChain: the chain at the coat's level (or the mirror)
     LobeMean = 5,      // uGgxLobeMean: the GGX lobe's mean light direction (ggx_sampling.h, meanLobe)
     DiffuseChain = 6,  // uDiffuseChain: the chain at the n = 1 level
+    FittedLobes = 7,   // uGgxFittedLobes: the fitted lobes' nodes (ggx_fitted_lobes.h), a 2D array
     FirstMap = 8,      // the material's texture maps, kMapCount units from here (material_maps.glsl)
 };
 constexpr GLuint unitIndex(TextureUnit unit) { return static_cast<GLuint>(unit); }
@@ -32,13 +33,14 @@ struct SamplerUnit {
     const char* uniform;
     GLuint unit;
 };
-inline constexpr std::array<SamplerUnit, 14> kSamplerUnits{{
+inline constexpr std::array<SamplerUnit, 15> kSamplerUnits{{
     {"uEnvironment", unitIndex(TextureUnit::Chain)},
     {"uHdr", unitIndex(TextureUnit::Picture)},
     {"uIrradiance", unitIndex(TextureUnit::Irradiance)},
     {"uStack", unitIndex(TextureUnit::Stack)},
     {"uGgxAlbedo", unitIndex(TextureUnit::SplitSum)},
     {"uGgxLobeMean", unitIndex(TextureUnit::LobeMean)},
+    {"uGgxFittedLobes", unitIndex(TextureUnit::FittedLobes)},
     {"uCoatChain", unitIndex(TextureUnit::CoatChain)},
     {"uDiffuseChain", unitIndex(TextureUnit::DiffuseChain)},
     {"uBaseColorMap", mapUnit(0)},

@@ -117,6 +117,11 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize);
 // entry (toward grazing, where the GGX lobe is squeezed across the plane of incidence, 2α·N·v)
 // reads that entry.
 bool ggxLookupsHeld(double roughness, int lookups, int baseSize, bool mapped = false);
+// Whether a GGX layer's `lookups` are the fitted lobes (ggx_fitted_lobes.h, readsFittedLobes)
+// rather than its visible normals, where the stack holds them (ggxLookupsHeld): not with a
+// roughness map (its fragments read the chain, at any roughness). The entries it reads, its
+// head-on entry and whether the stack holds it are then the fitted lobes' (ggxEntries, ggxHeadOnEntry).
+bool ggxReadsFittedLobes(double roughness, int lookups, bool mapped = false);
 // The lookups a GGX layer reads per fragment, of the display's `lookups` (K): K, unless the layer
 // shades the bright lights apart (`lightsShaded` and α ≥ lightsApartMinAlpha) and the stack does
 // not hold its K lookups (ggxLookupsHeld): then the most of K/2, K/4, …, 1 that it holds (K when
