@@ -91,13 +91,14 @@ std::vector<double> lambdasOf(const Material& material) {
     std::vector<double> out{specularLambda(material.layers)};
     auto lookups = [&](double roughness) {
         if (!(roughness > 0.0)) return;
-        // The visible normals' (a roughness map's fragments read them) and the fitted lobes'.
-        for (const ExponentRange& range : {lookupExponentRange(roughness * roughness, kGgxLookups),
-                                           readsFittedLobes(roughness, kGgxLookups) ? fittedLobeExponentRange(roughness)
-                                                                                    : lookupExponentRange(roughness * roughness, kGgxLookups)}) {
+        // The visible normals' (a roughness map's fragments read them), and the fitted lobes' where
+        // the layer has them (ggx_fitted_lobes.h).
+        auto push = [&](const ExponentRange& range) {
             out.push_back(exponentToLambda(range.sharpest));
             out.push_back(exponentToLambda(range.widest));
-        }
+        };
+        push(lookupExponentRange(roughness * roughness, kGgxLookups));
+        if (readsFittedLobes(roughness, kGgxLookups)) push(fittedLobeExponentRange(roughness));
     };
     lookups(material.layers.roughness);
     if (hasCoat(material.layers)) {

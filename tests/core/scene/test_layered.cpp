@@ -2,6 +2,8 @@
 // grazing, coloured metals, the coat) and the model against the per-direction BRDF integral.
 #include "mipgloss/scene/layered.h"
 
+#include "mipgloss/ibl/ggx_fitted_lobes.h"
+
 #include "mipgloss/scene/layered_reference.h"
 
 #include <gtest/gtest.h>
@@ -90,19 +92,22 @@ TEST(LayeredWeights, LambdasInUseFollowTheLayers) {
     Material m;
     m.layered = true;
     m.layers.roughness = 0.4f;
-    // Each GGX layer: its Phong stand-in's λ and its lookups' sharpest and widest (ggx_sampling.h);
-    // then the diffuse base.
+    // Each GGX layer: its Phong stand-in's λ, its visible normals' sharpest and widest
+    // (ggx_sampling.h) and, from r 0.1 to 0.5, its fitted lobes' (ggx_fitted_lobes.h); then the
+    // diffuse base.
     const double roughness = m.layers.roughness;
     const ExponentRange specular = lookupExponentRange(roughness * roughness, kGgxLookups);
+    const ExponentRange fitted = fittedLobeExponentRange(roughness);
     EXPECT_EQ(lambdasOf(m), (std::vector<double>{specularLambda(m.layers), exponentToLambda(specular.sharpest),
-                                                 exponentToLambda(specular.widest), diffuseLambda()}));
-    m.layers.coat = 0.5f;
-    EXPECT_EQ(lambdasOf(m).size(), 7u);
+                                                 exponentToLambda(specular.widest), exponentToLambda(fitted.sharpest),
+                                                 exponentToLambda(fitted.widest), diffuseLambda()}));
+    m.layers.coat = 0.5f;  // its roughness 0.05: visible normals only
+    EXPECT_EQ(lambdasOf(m).size(), 9u);
     m.useIrradiance = true;  // the base from the irradiance map: no diffuse lobe from the chain
     const std::vector<double> lambdas = lambdasOf(m);
-    ASSERT_EQ(lambdas.size(), 6u);
+    ASSERT_EQ(lambdas.size(), 8u);
     EXPECT_NEAR(lambdas[0], specularLambda(m.layers), 0.0);
-    EXPECT_NEAR(lambdas[3], coatLambda(m.layers), 0.0);
+    EXPECT_NEAR(lambdas[5], coatLambda(m.layers), 0.0);
     EXPECT_LT(exponentToLambda(specular.sharpest), exponentToLambda(specular.widest));
     EXPECT_NEAR(diffuseLambda(), exponentToLambda(1.0), 0.0);
 }
