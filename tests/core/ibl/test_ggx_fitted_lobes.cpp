@@ -84,22 +84,23 @@ std::vector<Lobe> visibleNormals(double roughness, double cosView) {
 }
 
 TEST(GgxFittedLobes, BetweenTheNodesAreCloserToTheGgxLobeThanTheVisibleNormals) {
-    // Midway between nodes in both roughness and N·v (the grid: r 0.1 + 0.05 i to 0.5, x = i/11), where
+    // Midway between nodes in both roughness and N·v (the grid: r 0.1 + 0.05 i to 0.9, x = i/11), where
     // the renderer reads them interpolated. Measured when written: the fitted lobes' error is
-    // 1–10 % of the visible normals' head-on and toward grazing.
-    for (double roughness : {0.125, 0.275, 0.375, 0.475})
+    // 0.4–1 % of the visible normals' head-on, 8–52 % toward grazing (N·v 0.12: 0.015–0.10 against
+    // 0.07–0.42).
+    for (double roughness : {0.125, 0.275, 0.475, 0.675, 0.825})
         for (double cosView : {0.97, 0.73, 0.39, 0.12}) {
             const double lobes = kernelError(roughness, cosView, fitted(roughness, cosView));
             const double lookups = kernelError(roughness, cosView, visibleNormals(roughness, cosView));
             std::printf("[ GgxFittedLobes ] r %.3f N·v %.2f: squared kernel error %.5f (visible normals %.5f)\n", roughness,
                         cosView, lobes, lookups);
-            EXPECT_LE(lobes, 0.5 * lookups) << roughness << " " << cosView;
-            EXPECT_LE(lobes, 0.1) << roughness << " " << cosView;
+            EXPECT_LE(lobes, 0.6 * lookups) << roughness << " " << cosView;
+            EXPECT_LE(lobes, 0.12) << roughness << " " << cosView;
         }
 }
 
 TEST(GgxFittedLobes, WeightsArePositiveAndSumToOneAnywhere) {
-    for (double roughness = 0.1; roughness <= 0.5; roughness += 0.0333)
+    for (double roughness = 0.1; roughness <= 0.9; roughness += 0.0333)
         for (double cosView = 0.01; cosView <= 1.0; cosView += 0.0711) {
             double sum = 0.0;
             for (const FittedLobe& f : fittedLobes(roughness, cosView)) {
@@ -124,7 +125,7 @@ TEST(GgxFittedLobes, ReadALinearEnvironmentCloserToTheGgxLobeThanTheVisibleNorma
     const GgxAlbedoTable& table = GgxAlbedoTable::shared();
     double fittedSum = 0.0, lookupsSum = 0.0;
     int cases = 0;
-    for (double roughness : {0.2, 0.3, 0.4, 0.5})
+    for (double roughness : {0.2, 0.4, 0.6, 0.8})
         for (double cosView : {1.0, 0.8, 0.5, 0.25}) {
             glm::dvec3 mean(0.0), lookups(0.0);
             for (const FittedLobe& f : fittedLobes(roughness, cosView))
@@ -151,8 +152,8 @@ TEST(GgxFittedLobes, ReadALinearEnvironmentCloserToTheGgxLobeThanTheVisibleNorma
 
 TEST(GgxFittedLobes, AreReadOnlyWithTheRenderersLookupCountAndOnTheGrid) {
     EXPECT_TRUE(readsFittedLobes(0.1, kFittedLobeCount));
-    EXPECT_TRUE(readsFittedLobes(0.5, kFittedLobeCount));
-    EXPECT_FALSE(readsFittedLobes(0.55, kFittedLobeCount));
+    EXPECT_TRUE(readsFittedLobes(0.9, kFittedLobeCount));
+    EXPECT_FALSE(readsFittedLobes(0.95, kFittedLobeCount));
     EXPECT_FALSE(readsFittedLobes(0.05, kFittedLobeCount));
     EXPECT_FALSE(readsFittedLobes(0.5, 4));
     EXPECT_FALSE(readsFittedLobes(0.5, 16));

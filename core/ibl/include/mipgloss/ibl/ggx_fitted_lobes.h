@@ -33,7 +33,7 @@ inline constexpr int kFittedLobeCount = 8;
 // The grid: N·v columns at x = 1 − √(1 − θ/(π/2)) (GgxAlbedoTable's), x = i/(columns − 1);
 // roughness rows from kFittedLeastRoughness by kFittedRoughnessStep.
 inline constexpr int kFittedCosNodes = 12;
-inline constexpr int kFittedRoughnessNodes = 9;  // to r 0.5 (scripts/fit-ggx-lobes.py: why)
+inline constexpr int kFittedRoughnessNodes = 17;  // to r 0.9 (scripts/fit-ggx-lobes.py: why)
 inline constexpr double kFittedLeastRoughness = 0.1;
 inline constexpr double kFittedRoughnessStep = 0.05;
 // Stored per lobe: q1, q2, η, weight (F0 part), weight (edge part).
@@ -47,11 +47,8 @@ struct FittedLobe {
 };
 
 // Whether a layer of `roughness` reading `lookups` lookups reads the fitted lobes instead: the
-// renderer's K (kFittedLobeCount) and a roughness the grid covers, r 0.1–0.5. Rougher layers read
-// their visible normals, blended with their mean lobe from r 0.8 (ggx_sampling.h, meanLobeShare):
-// on the GPU the fitted lobes were further from the truth than those at r 0.6–0.7 (their wide
-// lobes read below the horizon; docs/material-truth.md, "Fitted lobes"), and a last row's lobes in
-// α's units are far from a rougher layer's lobe.
+// renderer's K (kFittedLobeCount) and a roughness the grid covers, r 0.1–0.9. From r 0.8 a layer
+// blends them with its mean lobe (ggx_sampling.h, meanLobeShare), which it reads alone from 0.9.
 bool readsFittedLobes(double roughness, int lookups);
 
 // The fitted lobes at `roughness` and N·v (bilinear between the nodes, clamped to the grid).
