@@ -56,6 +56,9 @@ int stackSharperIndex(float n) {
     return j;
 }
 
+// The entry nearest lobe n, in λ (entries 2^¼ apart in n): not clamped to the stack's range.
+int stackNearestIndex(float n) { return int(round(exponentLambda(n) * float(STACK_STEPS_PER_LEVEL))); }
+
 // The wider neighbour's weight in the blend of entries `sharper` and `wider` that keeps lobe n's
 // mean cosine (lobes.h, stackBlend): linear in 1/(n + 2), the lobe's mean of 1 − cos θ.
 float stackBlendWeight(float n, int sharper, int wider) {
@@ -97,11 +100,17 @@ vec3 stackRead(vec3 d, float n) {
     return w > 0.0 ? mix(sharp, stackEntryAt(min(j + 1, STACK_LAST), d), w) : sharp;
 }
 
+// Lobe n widened by a footprint's share w = (|dx|² + |dy|²)/24 (lobes.h, footprintExponent):
+// 1/(n' + 2) = 1/(n + 2) + w. A caller reading many lobes through one footprint computes w once.
+float widenedExponent(float n, float w) {
+    float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + w;
+    return u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+}
+
 // The lobe a pixel shows when its unit lookup direction changes by dx, dy to the next pixels
 // (lobes.h, footprintExponent): 1/(n' + 2) = 1/(n + 2) + (|dx|² + |dy|²)/24.
 float footprintExponent(float n, vec3 dx, vec3 dy) {
-    float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + (dot(dx, dx) + dot(dy, dy)) / 24.0;
-    return u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+    return widenedExponent(n, (dot(dx, dx) + dot(dy, dy)) / 24.0);
 }
 
 // Lobe n (held by the stack) widened by the footprint, but never past the widest entry the scene

@@ -63,12 +63,11 @@ struct LayerLookup {
 LayerLookup layerLookup(LayerRead r, vec3 v, vec3 t, vec3 b, float footprint, int k, int count) {
     GgxLookup g = ggxLookup(r.alpha, v, k, count);
     float n = lookupExponent(g.pdf, count);
-    float u = (isinf(n) ? 0.0 : 1.0 / (n + 2.0)) + footprint;
     LayerLookup q;
-    q.shown = u > 0.0 ? max(1.0 / u - 2.0, 0.0) : n;
+    q.shown = widenedExponent(n, footprint);
     vec3 l = keptAboveHorizon(g.light, q.shown);
     q.light = normalize(l.x * t + l.y * b + l.z * r.normal);
-    q.entry = int(round(exponentLambda(q.shown) * float(STACK_STEPS_PER_LEVEL)));
+    q.entry = stackNearestIndex(q.shown);
     q.weightA = max(g.weight, 0.0) * (1.0 - g.fresnelEdge);
     q.weightB = max(g.weight, 0.0) * g.fresnelEdge;
     return q;
@@ -146,7 +145,7 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     bool subtract = split && !r.remainder;
     // The lights each loop goes through: none where it would discard them (lightsThrough).
     int apart = split ? uLightCount : 0, subtracted = subtract ? uLightCount : 0;
-    // The footprint widens every lookup's lobe the same way (lobes.h, footprintExponent).
+    // The footprint widens every lookup's lobe the same way (lobe_stack.glsl, widenedExponent).
     float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
     // Held layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the
     // visible normals; the chain's loop starts where the held ones end.
@@ -156,11 +155,8 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     vec2 fittedAt = fittedLobeCoordinates(sqrt(r.alpha), cosView);
     for (int k = 0; k < fittedCount; ++k) {
         FittedLobe f = fittedLobe(fittedAt, r.alpha, v, k);
-        float u = 1.0 / (f.exponent + 2.0) + footprint;
-        float shown = max(1.0 / u - 2.0, 0.0);
         vec3 light = normalize(f.direction.x * t + f.direction.y * b + f.direction.z * r.normal);
-        int entry = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
-        vec3 value = heldRead(r, light, entry, subtracted);
+        vec3 value = heldRead(r, light, stackNearestIndex(widenedExponent(f.exponent, footprint)), subtracted);
         sumA += f.weights.x * value;
         sumB += f.weights.y * value;
         weightA += f.weights.x;
@@ -188,11 +184,9 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     int meanReads = r.meanShare > 0.0 ? 1 : 0;
     for (int k = 0; k < meanReads; ++k) {
         vec4 m = ggxMeanLobe(sqrt(r.alpha), cosView);
-        float u = 1.0 / (m.w + 2.0) + footprint;
-        float shown = max(1.0 / u - 2.0, 0.0);
+        float shown = widenedExponent(m.w, footprint);
         vec3 light = normalize(m.x * t + m.z * r.normal);
-        int entry = int(round(exponentLambda(shown) * float(STACK_STEPS_PER_LEVEL)));
-        vec3 value = r.held ? heldBlend(r, light, shown, subtracted) : chainRead(r, light, shown, entry, apart);
+        vec3 value = r.held ? heldBlend(r, light, shown, subtracted) : chainRead(r, light, shown, stackNearestIndex(shown), apart);
         meanA = mix(meanA, value, r.meanShare);
         meanB = mix(meanB, value, r.meanShare);
     }

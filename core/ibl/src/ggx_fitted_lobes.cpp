@@ -22,9 +22,6 @@ struct GridPoint {
     int row, column;
     double rowWeight, columnWeight;  // of row + 1, column + 1
 };
-// ggx_sampling.cpp's least N·v: a view at the horizon is read as one just above it.
-constexpr double kLeastCosView = 1e-4;
-
 GridPoint gridPoint(double roughness, double cosView) {
     const double theta = std::acos(std::clamp(cosView, 0.0, 1.0));
     const double x = 1.0 - std::sqrt(std::max(0.0, 1.0 - theta / (0.5 * std::numbers::pi)));

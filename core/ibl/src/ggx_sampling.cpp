@@ -14,12 +14,6 @@
 
 namespace mipgloss {
 
-namespace {
-// The smallest N·v the samplers and the table's last column use: the view on the horizon has
-// no visible normals; 1e-4 is 0.006° above it.
-constexpr double kLeastCosView = 1e-4;
-}  // namespace
-
 glm::dvec2 ggxSequence(int k, int count) {
     std::uint32_t bits = static_cast<std::uint32_t>(k);
     bits = (bits << 16u) | (bits >> 16u);

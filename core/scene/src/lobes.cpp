@@ -143,9 +143,9 @@ int ggxHeadOnEntry(double roughness, int lookups, int baseSize) {
     // The mean lobe (meanLobeShare) is read at every N·v from the stack: its sharpest too.
     const double alpha = roughness * roughness, share = meanLobeShare(roughness);
     double sharpest = share > 0.0 ? meanLobeExponentRange(roughness).sharpest : 0.0;
-    if (share < 1.0 && ggxReadsFittedLobes(roughness, lookups, false))
-        sharpest = std::max(sharpest, fittedLobeSharpestHeadOn(roughness));
-    for (int k = 0; share < 1.0 && !ggxReadsFittedLobes(roughness, lookups, false) && k < lookups; ++k) {
+    const bool fitted = ggxReadsFittedLobes(roughness, lookups);
+    if (share < 1.0 && fitted) sharpest = std::max(sharpest, fittedLobeSharpestHeadOn(roughness));
+    for (int k = 0; share < 1.0 && !fitted && k < lookups; ++k) {
         const GgxLookup g = ggxLookup(alpha, glm::dvec3(0.0, 0.0, 1.0), ggxSequence(k, lookups));
         if (g.weight > 0.0) sharpest = std::max(sharpest, lookupExponent(g.pdf, lookups));
     }

@@ -35,6 +35,10 @@ inline constexpr int kGgxLookups = 8;
 // their neighbours, so K of them sum to a smooth lobe. Chosen on the `city` map only.
 inline constexpr double kSampleSpread = 2.0;
 
+// The smallest N·v the samplers, the tables and the fitted lobes use: the view on the horizon has
+// no visible normals; 1e-4 is 0.006° above it.
+inline constexpr double kLeastCosView = 1e-4;
+
 // Sample k of `count`: (u1, u2) = ((k + ½)/count, radical inverse base 2 of k).
 glm::dvec2 ggxSequence(int k, int count);
 
