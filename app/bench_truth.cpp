@@ -57,7 +57,8 @@ bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0
   --truth-at WHERE  each pixel's truth over its area (default: the mean over S×S positions, as a
                     path tracer's box filter, S from the change of R across it against the lobe),
                     or at its centre ("centre")
-  --dump DIR        each row's pixels as CSV in DIR (x, y, N·v, shown, truth, Karis; RGB each)
+  --dump DIR        each row's pixels as CSV in DIR (x, y, N·v, shown, truth, Karis, RGB each;
+                    the normal and view at the pixel's centre)
   --scattering S    single (default: the glTF specification's BRDF) or compensated (multiple
                     scattering, ggx_sampling.h): the picture, the truth and Karis all so
 )";
@@ -123,28 +124,6 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
     return e;
 }
 
-// One row's pixels, for looking at where the error is: DIR/map-face-side-material-K.csv.
-void dumpPixels(const std::string& folder, const std::string& map, int face, int side, const std::string& material,
-                int lookups, int width, const std::vector<std::size_t>& sample, const std::vector<double>& cosView,
-                const std::vector<glm::dvec3>& shown, const std::vector<glm::dvec3>& truth,
-                const std::vector<glm::dvec3>& karis) {
-    std::filesystem::create_directories(folder);
-    std::string name = map + "-" + std::to_string(face) + "-" + std::to_string(side) + "-" + material + "-" +
-                       std::to_string(lookups) + ".csv";
-    std::replace(name.begin(), name.end(), ' ', '_');
-    const std::filesystem::path path = std::filesystem::path(folder) / name;
-    std::FILE* out = std::fopen(path.string().c_str(), "w");
-    if (!out) throw std::runtime_error("bench truth: cannot write " + path.string());
-    std::fprintf(out, "x,y,cos_view,shown_r,shown_g,shown_b,truth_r,truth_g,truth_b,karis_r,karis_g,karis_b\n");
-    for (std::size_t j = 0; j < sample.size(); ++j) {
-        const std::size_t i = sample[j];
-        std::fprintf(out, "%zu,%zu,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", i % static_cast<std::size_t>(width),
-                     i / static_cast<std::size_t>(width), cosView[j], shown[j].x, shown[j].y, shown[j].z, truth[j].x,
-                     truth[j].y, truth[j].z, karis[j].x, karis[j].y, karis[j].z);
-    }
-    std::fclose(out);
-}
-
 // A pixel's normal and view at its centre (from the AOV: N, and R = reflect(−v, N)), and their
 // change to the next pixel right and down: central differences, one-sided at the object's edge,
 // none where neither neighbour is on it (the shader's dFdx/dFdy, from the same quads).
@@ -152,6 +131,30 @@ struct PixelGeometry {
     glm::dvec3 n{0.0, 0.0, 1.0}, v{0.0, 0.0, 1.0};
     glm::dvec3 dndx{0.0}, dndy{0.0}, dvdx{0.0}, dvdy{0.0};
 };
+
+// One row's pixels, for looking at where the error is: DIR/map-face-side-material-K.csv.
+void dumpPixels(const std::string& folder, const std::string& map, int face, int side, const std::string& material,
+                int lookups, int width, const std::vector<std::size_t>& sample, const std::vector<double>& cosView,
+                const std::vector<glm::dvec3>& shown, const std::vector<glm::dvec3>& truth,
+                const std::vector<glm::dvec3>& karis, const std::vector<PixelGeometry>& geometry) {
+    std::filesystem::create_directories(folder);
+    std::string name = map + "-" + std::to_string(face) + "-" + std::to_string(side) + "-" + material + "-" +
+                       std::to_string(lookups) + ".csv";
+    std::replace(name.begin(), name.end(), ' ', '_');
+    const std::filesystem::path path = std::filesystem::path(folder) / name;
+    std::FILE* out = std::fopen(path.string().c_str(), "w");
+    if (!out) throw std::runtime_error("bench truth: cannot write " + path.string());
+    std::fprintf(out, "x,y,cos_view,shown_r,shown_g,shown_b,truth_r,truth_g,truth_b,karis_r,karis_g,karis_b,n_x,n_y,n_z,v_x,v_y,v_z\n");
+    for (std::size_t j = 0; j < sample.size(); ++j) {
+        const std::size_t i = sample[j];
+        const PixelGeometry& g = geometry[j];
+        std::fprintf(out, "%zu,%zu,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f\n",
+                     i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width), cosView[j], shown[j].x,
+                     shown[j].y, shown[j].z, truth[j].x, truth[j].y, truth[j].z, karis[j].x, karis[j].y, karis[j].z,
+                     g.n.x, g.n.y, g.n.z, g.v.x, g.v.y, g.v.z);
+    }
+    std::fclose(out);
+}
 
 PixelGeometry pixelGeometry(const ui::AovImage& aov, std::size_t i) {
     const auto normalAt = [&](std::size_t k) { return glm::normalize(glm::dvec3(aov.diffuse.direction[k])); };
@@ -285,6 +288,7 @@ int runTruthBench(Args args) {
                         std::vector<std::size_t> sample;
                         std::vector<glm::dvec3> truth, karis;
                         std::vector<double> cosView;
+                        std::vector<PixelGeometry> geometry;
                         for (const double k : lookups)
                         for (const bool lightsOn : lightsModes) {
                             const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn, scattering);
@@ -310,9 +314,11 @@ int runTruthBench(Args args) {
                                 truth.resize(sample.size());
                                 karis.resize(sample.size());
                                 cosView.resize(sample.size());
+                                geometry.resize(sample.size());
                                 const double alpha = std::max(1e-3, static_cast<double>(layers.roughness * layers.roughness));
                                 parallelFor(0, static_cast<int>(sample.size()), [&](int j) {
                                     const PixelGeometry g = pixelGeometry(aov, sample[static_cast<std::size_t>(j)]);
+                                    geometry[static_cast<std::size_t>(j)] = g;
                                     const int s = truthOverArea ? areaSubdivisions(g, alpha) : 1;
                                     glm::dvec3 t(0.0), kk(0.0);
                                     for (int sy = 0; sy < s; ++sy)
@@ -353,7 +359,7 @@ int runTruthBench(Args args) {
                             std::fflush(stdout);
                             if (!dumpFolder.empty())
                                 dumpPixels(dumpFolder, map, static_cast<int>(faceSize), side, name, static_cast<int>(k),
-                                           w, sample, cosView, shown, truth, karis);
+                                           w, sample, cosView, shown, truth, karis, geometry);
                         }
                     }
         }
