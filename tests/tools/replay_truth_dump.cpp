@@ -8,7 +8,7 @@
 // the fit is; where only the picture is, the renderer is (docs/material-truth.md, "Refits tried").
 // The whole environment is read through the lobes (no lights taken out): compare maps without a
 // sun (forest), or the picture with `--lights off`.
-#include "mipgloss/ibl/builders.h"
+#include "core/scene/fitted_lobes_model.h"
 #include "mipgloss/ibl/colour.h"
 #include "mipgloss/ibl/ggx_fitted_lobes.h"
 #include "mipgloss/ibl/ggx_sampling.h"
@@ -57,24 +57,11 @@ struct Bins {
     }
 };
 
-// The white metal's specular as the renderer's held loop reads it: the fitted lobes in the frame
-// N = z, v in the xz plane (object.frag, readGgx), each the exact lobe, their weighted mean times
-// the albedo table's A + B.
+// The white metal's specular as the renderer's held loop reads it: the fitted lobes' mean
+// (fitted_lobes_model.h) times the albedo table's A + B.
 double fittedModel(const CubeMap& base, double roughness, const glm::dvec3& n, const glm::dvec3& v) {
-    const double cosView = std::clamp(glm::dot(n, v), 1e-4, 1.0);
-    glm::dvec3 t = v - cosView * n;
-    const double length = glm::length(t);
-    t = length > 1e-9 ? t / length : glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 b = glm::cross(n, t);
-    double sum = 0.0, weights = 0.0;
-    for (const FittedLobe& lobe : fittedLobes(roughness, cosView)) {
-        const glm::dvec3 l = lobe.direction.x * t + lobe.direction.y * b + lobe.direction.z * n;
-        const double w = lobe.weightA + lobe.weightB;
-        sum += w * referenceLobeAt(base, lobe.exponent, {glm::vec3(l)}, 1e-6)[0].g;
-        weights += w;
-    }
-    const GgxAlbedoTable::Albedo a = GgxAlbedoTable::shared().at(roughness, cosView);
-    return weights > 0.0 ? (a.a + a.b) * sum / weights : 0.0;
+    const GgxAlbedoTable::Albedo a = GgxAlbedoTable::shared().at(roughness, glm::dot(n, v));
+    return (a.a + a.b) * test::fittedLobesMean(base, roughness, n, v);
 }
 
 }  // namespace

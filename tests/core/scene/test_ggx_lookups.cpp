@@ -16,22 +16,11 @@
 #include <cstdio>
 #include <string>
 
+#include "fitted_lobes_model.h"
 #include "test_support.h"
 
 namespace mipgloss {
 namespace {
-
-struct Frame {
-    glm::dvec3 t, b, n;
-    glm::dvec3 local;  // v in the frame N = z
-};
-Frame frameOf(const glm::dvec3& n, const glm::dvec3& v) {
-    const double mu = std::clamp(glm::dot(n, v), 1e-4, 1.0);
-    glm::dvec3 t = v - mu * n;
-    const double tl = glm::length(t);
-    t = tl > 1e-9 ? t / tl : glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    return {t, glm::cross(n, t), n, glm::dvec3(std::sqrt(1 - mu * mu), 0, mu)};
-}
 
 enum class Horizon { Kept, Ignored };
 // What a layer's lookups are: K visible normals, the one mean lobe (meanLobe), or the eight
@@ -44,7 +33,7 @@ enum class Lookups { VisibleNormals, MeanLobe, Fitted };
 double modelled(const CubeMap& smooth, const std::vector<PointLight>& lights, double roughness, const glm::dvec3& n,
                 const glm::dvec3& v, int count, Horizon horizon = Horizon::Kept, Lookups lookups = Lookups::VisibleNormals) {
     const double alpha = roughness * roughness;
-    const Frame f = frameOf(n, v);
+    const test::LayerFrame f = test::layerFrameOf(n, v);
     double sum = 0.0, weights = 0.0;
     if (lookups == Lookups::MeanLobe) {
         const MeanLobe lobe = meanLobe(GgxAlbedoTable::shared().at(roughness, glm::dot(n, v)));
@@ -54,12 +43,8 @@ double modelled(const CubeMap& smooth, const std::vector<PointLight>& lights, do
         count = 0;
     }
     if (lookups == Lookups::Fitted) {
-        for (const FittedLobe& lobe : fittedLobes(roughness, glm::dot(n, v))) {
-            const glm::dvec3 l = lobe.direction.x * f.t + lobe.direction.y * f.b + lobe.direction.z * f.n;
-            const double w = lobe.weightA + lobe.weightB;
-            sum += w * referenceLobeAt(smooth, lobe.exponent, {glm::vec3(l)}, 1e-6)[0].g;
-            weights += w;
-        }
+        sum = test::fittedLobesMean(smooth, roughness, n, v);
+        weights = 1.0;
         count = 0;
     }
     for (int k = 0; k < count; ++k) {
