@@ -158,7 +158,9 @@ def lobes(P, alpha, mu, L, grad=False):
         g = R + alpha * (P[k, 0] * e1 + P[k, 1] * e2)
         gl = np.linalg.norm(g)
         d = g / gl
-        n = np.exp(-P[k, 2]) / alpha ** 2 - 2  # ≥ LEAST_EXPONENT by the bounds (fit_node)
+        # Clamped at 0 (no gradient there) in the committed fit; with --least-exponent, bounds on η
+        # keep n ≥ LEAST_EXPONENT (fit_node) and it is not clamped.
+        n = np.exp(-P[k, 2]) / alpha ** 2 - 2
         clamped = LEAST_EXPONENT is None and n <= 0
         n = max(n, 0.0) if LEAST_EXPONENT is None else n
         c = np.clip(L @ d, 0, None)
@@ -229,8 +231,11 @@ def fit_node(alpha, mu, start, anchor=None):
     # η ≤ −ln((LEAST_EXPONENT + 2)·α²), so n ≥ LEAST_EXPONENT; the rest free.
     most = np.inf if LEAST_EXPONENT is None else -np.log((LEAST_EXPONENT + 2) * alpha * alpha)
     bounds = None if LEAST_EXPONENT is None else [(None, most) if i % 4 == 2 else (None, None) for i in range(4 * K)]
-    x0 = np.array(Pv if start is None else start, dtype=float)
-    x0[2::4] = np.minimum(x0[2::4], most)
+    def within(P):  # a start inside the bounds
+        P = np.array(P, dtype=float)
+        P[2::4] = np.minimum(P[2::4], most)
+        return P
+    x0 = within(Pv if start is None else start)
     res = so.minimize(objective, x0, args=(alpha, mu, L, W, pn, T, P2), jac=True, bounds=bounds,
                       method="L-BFGS-B", options={"maxiter": 400})
     # The row below's arrangement at this N·v (`anchor`), refitted from there and drawn gently toward
@@ -239,9 +244,7 @@ def fit_node(alpha, mu, start, anchor=None):
     # from one role to another) the row below's, so that rows interpolate.
     if anchor is not None and ANCHOR is not None:
         beta = ANCHOR * res.fun / max(float((res.x - anchor) @ (res.x - anchor)), 1e-2)
-        y0 = np.array(anchor, dtype=float)
-        y0[2::4] = np.minimum(y0[2::4], most)
-        near = so.minimize(objective, y0, args=(alpha, mu, L, W, pn, T, P2, anchor, beta), jac=True, bounds=bounds,
+        near = so.minimize(objective, within(anchor), args=(alpha, mu, L, W, pn, T, P2, anchor, beta), jac=True, bounds=bounds,
                            method="L-BFGS-B", options={"maxiter": 400})
         nearJ, _ = objective(near.x, alpha, mu, L, W, pn, T, P2)
         if nearJ <= CONSISTENT_SHARE * res.fun:
