@@ -82,6 +82,27 @@ std::string readError(OIIO::ImageInput& in) {
     return "cannot read the pixels (truncated or corrupt image)" + (err.empty() ? std::string() : ": " + err);
 }
 
+// Rows y0 … y0 + rows of the image as `channels` 8-bit values a pixel, 4 bytes apart, into `rgba`.
+// Read as the file stores them (every channel, its own type, contiguous) and converted here:
+// OpenImageIO's read_scanlines, asked for another type or layout, converts through a scratch
+// buffer of 64 MiB per call (ImageInput::read_scanlines' chunk), whatever the rows asked for; a
+// band of a few rows then maps 64 MiB each time (a 16384-row image halved to 4096 would map it
+// 4096 times; one test's 1300 small bands took three minutes under AddressSanitizer). The
+// conversion is the one read_scanlines applies (convert_image). A file whose channels differ in
+// type (no single native type to read) is read the converting way.
+bool readBand(OIIO::ImageInput& in, int y0, int rows, int channels, std::vector<std::uint8_t>& stored, std::uint8_t* rgba) {
+    const OIIO::ImageSpec& spec = in.spec();
+    const int ybegin = spec.y + y0, yend = ybegin + rows;
+    if (!spec.channelformats.empty())
+        return in.read_scanlines(0, 0, ybegin, yend, 0, 0, channels, OIIO::TypeDesc::UINT8, rgba, 4);
+    const auto pixelBytes = static_cast<OIIO::stride_t>(spec.pixel_bytes(true));
+    stored.resize(static_cast<std::size_t>(pixelBytes) * static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(rows));
+    if (!in.read_scanlines(0, 0, ybegin, yend, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, stored.data())) return false;
+    return OIIO::convert_image(channels, spec.width, rows, 1, stored.data(), spec.format, pixelBytes, pixelBytes * spec.width,
+                               OIIO::AutoStride, rgba, OIIO::TypeDesc::UINT8, 4, 4 * static_cast<OIIO::stride_t>(spec.width),
+                               OIIO::AutoStride);
+}
+
 TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSize) {
     const OIIO::ImageSpec& spec = in.spec();
     checkDimensions(spec, name);
@@ -110,14 +131,12 @@ TextureImage readOpened(OIIO::ImageInput& in, const std::string& name, int maxSi
         const int band = 1 << halvings;
         const TextureSize out = fittedTextureSize({spec.width, spec.height}, maxSize);
         image.rgba.resize(out.rgbaBytes());
-        std::vector<std::uint8_t> strip, half;
+        std::vector<std::uint8_t> strip, half, stored;
         for (int row = 0, y0 = 0; y0 < spec.height; ++row, y0 += band) {
             const int rows = std::min(band, spec.height - y0);
             const std::uint64_t stripPixels = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(rows);
             strip.assign(stripPixels * 4, 0);
-            if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8,
-                                   strip.data(), 4))
-                throw TextureError(name, readError(in));
+            if (!readBand(in, y0, rows, channels, stored, strip.data())) throw TextureError(name, readError(in));
             expandToRgba(strip.data(), stripPixels, channels);
             int w = spec.width, h = rows;
             for (int i = 0; i < halvings; ++i) {
