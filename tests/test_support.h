@@ -16,6 +16,24 @@
 
 namespace mipgloss::test {
 
+// Whether this binary is built with a sanitizer (the asan and tsan presets). Tests that repeat a
+// whole process many times to catch a moment (the kill tests) repeat it fewer times there: the
+// sanitizer checks the code's accesses, which a few runs exercise as well as many, and a process
+// start costs it about a second (0.03 s in the dev build, which keeps the full count).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define MIPGLOSS_TEST_UNDER_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define MIPGLOSS_TEST_UNDER_SANITIZER 1
+#endif
+#ifdef MIPGLOSS_TEST_UNDER_SANITIZER
+inline constexpr bool kUnderSanitizer = true;
+#else
+inline constexpr bool kUnderSanitizer = false;
+#endif
+
 inline std::filesystem::path assetDir() { return MIPGLOSS_ASSET_DIR; }
 inline std::filesystem::path asset(const std::string& rel) { return assetDir() / rel; }
 

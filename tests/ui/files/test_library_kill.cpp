@@ -56,7 +56,8 @@ void sigkill(QProcess& process) {
     ASSERT_TRUE(process.waitForFinished(10000));
 }
 
-// The writer's loop, killed 200 times at a random moment 0–30 ms after its writes began. Every time,
+// The writer's loop, killed 200 times (40 under a sanitizer: test::kUnderSanitizer) at a random
+// moment 0–30 ms after its writes began. Every time,
 // the file must be exactly a version the writer wrote: its first k materials for some k >= 1,
 // byte for byte as libraryToJson writes them. The file persists from run to run, so each kill
 // also tests that a file being replaced stays the old one or becomes the new one.
@@ -65,7 +66,7 @@ TEST(LibraryKill, WriterKilledAtRandomMomentsLeavesAVersionItWrote) {
     const fs::path lib = dir / "library.json";
     std::mt19937 random(9);  // seeded: the same moments every run
     std::uniform_int_distribution<int> delayMicroseconds(0, 30000);
-    constexpr int kRuns = 200;
+    constexpr int kRuns = test::kUnderSanitizer ? 40 : 200;
     std::set<int> lengths;
     int changed = 0, leftTemporary = 0;
     QByteArray previous;
@@ -128,7 +129,8 @@ QStringList cliFlags(int i) {
     return {"--lambda", QString::number(static_cast<double>(m.lambda)), "--mode", lookupModeName(m.mode)};
 }
 
-// `mipgloss library add` killed at a random moment of its run, 50 times, each adding the next
+// `mipgloss library add` killed at a random moment of its run, 50 times (15 under a sanitizer),
+// each adding the next
 // name. After each: every add that finished (exit 0) is in the file with its parameters, the
 // killed one is there whole or not at all, and nothing else is.
 TEST(LibraryKill, CliAddKilledAtRandomMomentsKeepsEveryFinishedAdd) {
@@ -163,7 +165,7 @@ TEST(LibraryKill, CliAddKilledAtRandomMomentsKeepsEveryFinishedAdd) {
 
     std::mt19937 random(9);
     std::uniform_int_distribution<int> delayMicroseconds(runMicroseconds * 7 / 10, runMicroseconds * 11 / 10);
-    constexpr int kKills = 50;
+    constexpr int kKills = test::kUnderSanitizer ? 15 : 50;
     std::vector<int> finished{0};
     int killedBefore = 0, killedAfter = 0, finishedFirst = 0;
     std::set<std::string> strays;
