@@ -50,7 +50,7 @@ vec3 readLayer(samplerCube chain, LayerRead r) {
 #ifdef LAYERED
 // Lookup k of `count` of a GGX layer (layered.glsl, ggxLookup) in the frame (t, b, N): its light
 // direction in the environment's frame, the lobe it reads (its share of the GGX lobe, widened by
-// the footprint `footprint` as lobes.h, footprintExponent, widens any lobe), the stack's nearest
+// readGgx's footprint share `footprint`, lobe_stack.glsl widenedExponent), the stack's nearest
 // entry to that lobe (2^¼ apart in n: within 9 % of it, which a lookup's share does not resolve)
 // and its weights G2/G1·(1 − (1 − v·h)⁵) and G2/G1·(1 − v·h)⁵ (0 below the horizon).
 struct LayerLookup {
@@ -145,8 +145,13 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     bool subtract = split && !r.remainder;
     // The lights each loop goes through: none where it would discard them (lightsThrough).
     int apart = split ? uLightCount : 0, subtracted = subtract ? uLightCount : 0;
-    // The footprint widens every lookup's lobe the same way (lobe_stack.glsl, widenedExponent).
-    float footprint = (dot(r.dx, r.dx) + dot(r.dy, r.dy)) / 24.0;
+    // The footprint widens every lookup's lobe the same way (lobe_stack.glsl, widenedExponent), by
+    // the variance of the disc as large as the pixel's parallelogram of directions, |dx × dy|/12,
+    // not by the mean of its two axes' variances, (|dx|² + |dy|²)/24 (the single lobe's): the two
+    // agree where the footprint is round, but at a sphere's rim R sweeps 0.25 rad across a pixel
+    // one way and 0.01 the other, and the mean widened every lookup into a disc that read a soft
+    // box the pixel's reflection never meets (docs/material-truth.md, "The footprint at the rim").
+    float footprint = length(cross(r.dx, r.dy)) / 12.0;
     // Held layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the
     // visible normals; the chain's loop starts where the held ones end.
     int fittedCount = r.held && r.fitted ? count : 0;
