@@ -89,11 +89,12 @@ std::string readError(OIIO::ImageInput& in) {
 // band of a few rows then maps 64 MiB each time (a 16384-row image halved to 4096 would map it
 // 4096 times; one test's 1300 small bands took three minutes under AddressSanitizer). The
 // conversion is the one read_scanlines applies (convert_image). A file whose channels differ in
-// type (no single native type to read) is read the converting way.
+// type (no single native type to read), or with more than four channels (the band as stored
+// would then outgrow its RGBA strip many times over), is read the converting way.
 bool readBand(OIIO::ImageInput& in, int y0, int rows, int channels, std::vector<std::uint8_t>& stored, std::uint8_t* rgba) {
     const OIIO::ImageSpec& spec = in.spec();
     const int ybegin = spec.y + y0, yend = ybegin + rows;
-    if (!spec.channelformats.empty())
+    if (!spec.channelformats.empty() || spec.nchannels > 4)
         return in.read_scanlines(0, 0, ybegin, yend, 0, 0, channels, OIIO::TypeDesc::UINT8, rgba, 4);
     const auto pixelBytes = static_cast<OIIO::stride_t>(spec.pixel_bytes(true));
     stored.resize(static_cast<std::size_t>(pixelBytes) * static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(rows));
