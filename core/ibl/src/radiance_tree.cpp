@@ -23,6 +23,18 @@ double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
 
 double lum(const glm::dvec3& e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
 
+// Whether a node at `c` of angular radius r is too coarse for the integrand about the focus:
+// wider than tolerance · (its distance from the lobe, at least the lobe's width); in a long lobe's
+// core band (RadianceFocus::length) wider than tolerance · width.
+constexpr double kCoreBandWidths = 3.0;
+bool tooCoarse(const glm::dvec3& c, double r, const RadianceFocus& focus, const RadianceAccuracy& accuracy) {
+    const double distance = angleBetween(focus.centre, c) - r;
+    if (focus.length > focus.width && distance < focus.length &&
+        std::abs(glm::dot(c, focus.across)) - std::sin(std::min(r, 1.5707963267948966)) < kCoreBandWidths * focus.width)
+        return r > accuracy.tolerance * focus.width;
+    return r > accuracy.tolerance * std::max(focus.width, distance);
+}
+
 }  // namespace
 
 RadianceTree::RadianceTree(const CubeMap& base) {
@@ -116,7 +128,7 @@ void visitTexelPart(Face f, double s0, double s1, double t0, double t1, const gl
         for (double t : {t0, t1}) r = std::max(r, angleBetween(c, facePoint(f, s, t)));
     const double above = glm::dot(focus.horizon, c), sinRadius = std::sin(std::min(r, 1.5707963267948966));
     if (above < -sinRadius) return;
-    const bool sharp = r > accuracy.tolerance * std::max(focus.width, angleBetween(focus.centre, c) - r);
+    const bool sharp = tooCoarse(c, r, focus, accuracy);
     const bool cut = above < sinRadius && r > accuracy.horizonRadius;
     if (depth > 0 && (sharp || cut)) {
         const double sm = 0.5 * (s0 + s1), tm = 0.5 * (t0 + t1);
@@ -130,8 +142,17 @@ void visitTexelPart(Face f, double s0, double s1, double t0, double t1, const gl
     visit(c, radiance * omega);
 }
 
-// Halvings of a base texel at most: a texel of a 16² face (0.1 rad) down to 0.0016 rad.
-constexpr int kTexelDepth = 6;
+// Halvings of a base texel: at least six (a texel of a 16² face, 0.1 rad, down to 0.0016 rad,
+// where the horizon asks), and as many as a lobe narrower than its texels needs for its parts to
+// reach tolerance · width at its peak (a lobe of r 0.05 at N·v 0.05 on a 256² face: eight), at
+// most sixteen (a 2048² face's texel down to 1e-8 rad).
+constexpr int kTexelDepth = 6, kDeepestTexelDepth = 16;
+int texelDepthFor(double texelRadius, const RadianceFocus& focus, const RadianceAccuracy& accuracy) {
+    const double finest = accuracy.tolerance * focus.width;
+    if (!(finest > 0.0)) return kDeepestTexelDepth;
+    const double halvings = std::ceil(std::log2(texelRadius / finest));
+    return static_cast<int>(std::clamp(halvings, double(kTexelDepth), double(kDeepestTexelDepth)));
+}
 
 }  // namespace
 
@@ -142,7 +163,7 @@ void RadianceTree::visitNode(int level, int face, int x, int y, const Focus& foc
     const double above = glm::dot(focus.horizon, l.centre[i]);
     if (above < -l.sinRadius[i]) return;  // wholly below the horizon
     const double r = l.radius[i];
-    const bool sharp = r > accuracy.tolerance * std::max(focus.width, angleBetween(focus.centre, l.centre[i]) - r);
+    const bool sharp = tooCoarse(l.centre[i], r, focus, accuracy);
     const bool cut = above < l.sinRadius[i] && r > accuracy.horizonRadius;
     if (sharp || cut) {
         if (level > 0) {
@@ -157,7 +178,7 @@ void RadianceTree::visitNode(int level, int face, int x, int y, const Focus& foc
             const double n = l.size;
             const glm::dvec3 radiance = l.energy[i] / texelSolidAngle(x, y, l.size);
             visitTexelPart(static_cast<Face>(face), x / n, (x + 1) / n, y / n, (y + 1) / n, radiance, focus, accuracy,
-                           kTexelDepth, visit);
+                           texelDepthFor(r, focus, accuracy), visit);
         }
         return;
     }

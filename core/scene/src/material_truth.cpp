@@ -25,6 +25,12 @@ RadianceTree::Focus focusOf(double alpha, const glm::dvec3& n, const glm::dvec3&
     focus.centre = glm::normalize(2.0 * glm::dot(n, v) * n - v);
     focus.width = std::min(2.0 * alpha * std::max(glm::dot(n, v), 0.02), kWidestFocus);
     focus.horizon = n;
+    // Along the plane of incidence the lobe is 2α long (two of its widths from the centre hold
+    // its peak's shape); across it, focus.width.
+    focus.length = std::min(4.0 * alpha, kWidestFocus);
+    const glm::dvec3 across = glm::cross(n, v);
+    const double acrossLength = glm::length(across);
+    focus.across = acrossLength > 1e-9 ? across / acrossLength : glm::dvec3(0.0);
     return focus;
 }
 
@@ -48,40 +54,6 @@ glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cos
     return scatteringCompensation(brdf.f0, GgxAlbedoTable::shared().at(roughness, cosView), scattering);
 }
 
-namespace {
-
-// A lobe narrower than about two base texels (4/N rad) covers a handful of texels: the tree would
-// have to split texels finer than the lobe. Such a lobe is integrated by sampling it instead, over
-// the decoded (piecewise-constant) texels: 64 × 64 stratified visible normals (Heitz 2018),
-// each F·G2/G1·L(l), whose only error is where a texel edge crosses a stratum (0.1–0.4 % for
-// lobes of one or two texels).
-constexpr int kSharpLobeStrata = 64;
-
-bool sharpLobe(double width, int baseSize) { return width < 4.0 / std::max(baseSize, 1); }
-
-// ∫ D·V·cos·Fresnel(v·h)·L over the lobe of α at n, v, by sampling: Fresnel F0 + (F90 − F0)(1 − v·h)⁵.
-glm::dvec3 sampledLobe(const RadianceTree& environment, double alpha, const glm::dvec3& f0, double f90,
-                       const glm::dvec3& n, const glm::dvec3& v) {
-    // The frame N = z, v in the xz half-plane.
-    const double mu = std::clamp(glm::dot(n, v), 0.0, 1.0);
-    glm::dvec3 t = v - mu * n;
-    const double tl = glm::length(t);
-    t = tl > 1e-12 ? t / tl : glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 b = glm::cross(n, t);
-    const glm::dvec3 local(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
-    glm::dvec3 sum(0.0);
-    for (int i = 0; i < kSharpLobeStrata; ++i)
-        for (int j = 0; j < kSharpLobeStrata; ++j) {
-            const GgxLookup s = ggxLookup(alpha, local, {(i + 0.5) / kSharpLobeStrata, (j + 0.5) / kSharpLobeStrata});
-            if (s.weight <= 0.0) continue;
-            const glm::dvec3 l = s.light.x * t + s.light.y * b + s.light.z * n;
-            const glm::dvec3 fresnel = f0 + (glm::dvec3(f90) - f0) * s.fresnelEdge;
-            sum += s.weight * fresnel * environment.radianceAt(l);
-        }
-    return sum / double(kSharpLobeStrata * kSharpLobeStrata);
-}
-
-}  // namespace
 
 MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layers, const glm::dvec3& n,
                             const glm::dvec3& v, Scattering scattering, const RadianceTree::Accuracy& accuracy) {
@@ -93,26 +65,21 @@ MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layer
         pixel.diffuse += gltfBrdfCosine(brdf, n, v, l).diffuse * energy;
     }, accuracy);
     const double base = 1.0 - coatFresnelWeight(brdf, mu);
-    const RadianceTree::Focus specularFocus = focusOf(brdf.alpha, n, v);
-    if (sharpLobe(specularFocus.width, environment.baseSize())) {
-        pixel.specular = base * sampledLobe(environment, brdf.alpha, brdf.f0, brdf.f90, n, v);
-    } else {
-        GltfBrdf bare = brdf;
-        bare.clearcoat = 0.0;
-        environment.walk(specularFocus, [&](const glm::dvec3& l, const glm::dvec3& energy) {
-            pixel.specular += gltfBrdfCosine(bare, n, v, l).specular * energy;
-        }, accuracy);
-        pixel.specular *= base;
-    }
+    // Sharp lobes too: the walk splits the texels under a lobe narrower than they are by area
+    // (radiance_tree.cpp), and takes the rest of the map, a sun in GGX's tail included, as its
+    // nodes. Sampling the lobe's visible normals instead (64 × 64 strata, before) missed or
+    // overstated such a sun by a stratum's area: 15.2 where the integral is 9.2 on a near-mirror
+    // pixel of sunrise (docs/material-truth.md, "The near-mirror's tail").
+    GltfBrdf bare = brdf;
+    bare.clearcoat = 0.0;
+    environment.walk(focusOf(brdf.alpha, n, v), [&](const glm::dvec3& l, const glm::dvec3& energy) {
+        pixel.specular += gltfBrdfCosine(bare, n, v, l).specular * energy;
+    }, accuracy);
+    pixel.specular *= base;
     if (brdf.clearcoat > 0.0) {
-        const RadianceTree::Focus coatFocus = focusOf(brdf.coatAlpha, n, v);
-        if (sharpLobe(coatFocus.width, environment.baseSize())) {
-            pixel.coat = coatFresnelWeight(brdf, mu) * sampledLobe(environment, brdf.coatAlpha, glm::dvec3(1.0), 1.0, n, v);
-        } else {
-            environment.walk(coatFocus, [&](const glm::dvec3& l, const glm::dvec3& energy) {
-                pixel.coat += gltfBrdfCosine(brdf, n, v, l).coat * energy;
-            }, accuracy);
-        }
+        environment.walk(focusOf(brdf.coatAlpha, n, v), [&](const glm::dvec3& l, const glm::dvec3& energy) {
+            pixel.coat += gltfBrdfCosine(brdf, n, v, l).coat * energy;
+        }, accuracy);
     }
     pixel.specular *= energyCompensation(brdf, layers.roughness, mu, scattering);
     return pixel;

@@ -28,11 +28,17 @@ namespace mipgloss {
 
 // Where the integrand is sharp: a lobe about `centre` (unit) of angular width `width` (radians),
 // cut by the plane through the origin with normal `horizon` (unit; what lies below it is not
-// visited).
+// visited). A lobe longer than it is wide (GGX's reflected lobe toward grazing: 2α along the plane
+// of incidence, 2α·N·v across it) also says `length` (its extent along the plane, from the centre)
+// and `across` (unit, normal to that plane): nodes within `length` of the centre and a few widths
+// of the plane are split to tolerance · width, as the peak is, not by their distance from the
+// centre (which would take the lobe's whole width in one node a few widths along it).
 struct RadianceFocus {
     glm::dvec3 centre{0.0, 0.0, 1.0};
     double width = 1.0;
     glm::dvec3 horizon{0.0, 0.0, 1.0};
+    double length = 0.0;
+    glm::dvec3 across{0.0};
 };
 struct RadianceAccuracy {
     double tolerance = 0.1;        // radius / distance at which a node is taken whole
