@@ -152,12 +152,25 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     // one way and 0.01 the other, and the mean widened every lookup into a disc that read a soft
     // box the pixel's reflection never meets (docs/material-truth.md, "The footprint at the rim").
     float footprint = length(cross(r.dx, r.dy)) / 12.0;
-    // Held layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the
-    // visible normals; the chain's loop starts where the held ones end.
+    // Layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the visible
+    // normals: held, each from the atlas; else each as chainRead reads a lookup (a near-mirror's
+    // sharp lobes from the chain's base, its tail's from the stack). The visible normals' chain
+    // loop starts where the others end.
     int fittedCount = r.held && r.fitted ? count : 0;
+    int fittedChain = !r.held && r.fitted ? count : 0;
     int held = r.held && !r.fitted ? count : 0;
-    int chainFrom = r.held ? count : 0;
+    int chainFrom = r.held || r.fitted ? count : 0;
     vec2 fittedAt = fittedLobeCoordinates(sqrt(r.alpha), cosView);
+    for (int k = 0; k < fittedChain; ++k) {
+        FittedLobe f = fittedLobe(fittedAt, r.alpha, v, k);
+        vec3 light = normalize(f.direction.x * t + f.direction.y * b + f.direction.z * r.normal);
+        float shown = widenedExponent(f.exponent, footprint);
+        vec3 value = chainRead(r, light, shown, stackNearestIndex(shown), apart);
+        sumA += f.weights.x * value;
+        sumB += f.weights.y * value;
+        weightA += f.weights.x;
+        weightB += f.weights.y;
+    }
     for (int k = 0; k < fittedCount; ++k) {
         FittedLobe f = fittedLobe(fittedAt, r.alpha, v, k);
         vec3 light = normalize(f.direction.x * t + f.direction.y * b + f.direction.z * r.normal);

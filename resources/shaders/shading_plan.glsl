@@ -60,7 +60,7 @@ struct LayerRead {
     bool remainder;          // READ_GGX, held: and the remainder's entries, without the bright lights
     int lookups;             // READ_GGX: how many (lobes.h, ggxLayerLookups)
     float meanShare;         // READ_GGX: how much reads the mean lobe instead (ggx_sampling.h, meanLobeShare)
-    bool fitted;             // READ_GGX, held: its lookups are the fitted lobes (ggx_fitted_lobes.h)
+    bool fitted;             // READ_GGX: its lookups are the fitted lobes (ggx_fitted_lobes.h), held or not
 };
 
 struct FragmentPlan {

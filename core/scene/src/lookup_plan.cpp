@@ -45,12 +45,27 @@ LayeredLookup planLayered(const Material& material, bool irradianceReady, int ch
         m.useIrradiance = useIrradiance;
         return planLookup(m, irradianceReady, chainFaceSize);
     };
+    // A GGX layer of any roughness above 0 reads its lobes per fragment (object.frag, readGgx),
+    // from the stack where it holds them and else from the chain at each lobe's level: never the
+    // mirror texture, whose levels are GL's 2 × 2 box mips, though a near-mirror's λ is 0. Read
+    // there, a near-mirror's tail lobes saw a sun 0.1 rad off R as a box of two texels, not as
+    // its lobe does (sunrise, r 0.05: 6.0 where the truth is 9.2; docs/material-truth.md, "The
+    // near-mirror's tail"). Only r = 0, one lookup along R, is the mirror.
+    auto ggx = [&](double roughness, double lambda) {
+        ObjectLookup p = single(lambda, LookupMode::Reflect, false);
+        if (roughness > 0.0) {
+            p.mirror = false;
+            p.readsLobeStack = true;
+            p.minLevel = 0.0f;
+        }
+        return p;
+    };
     const Layers& l = material.layers;
     LayeredLookup plan;
     plan.diffuse = single(diffuseLambda(), LookupMode::Normal, material.useIrradiance);
-    plan.specular = single(specularLambda(l), LookupMode::Reflect, false);
+    plan.specular = ggx(l.roughness, specularLambda(l));
     plan.hasCoat = hasCoat(l);
-    if (plan.hasCoat) plan.coat = single(coatLambda(l), LookupMode::Reflect, false);
+    if (plan.hasCoat) plan.coat = ggx(l.coatRoughness, coatLambda(l));
     return plan;
 }
 

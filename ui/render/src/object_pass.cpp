@@ -220,9 +220,9 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     const bool coatHeld = coat && ggxLookupsHeld(m.layers.coatRoughness, coatLookups, base);
     gl->glUniform1i(u.specularHeld, specularHeld ? 1 : 0);
     gl->glUniform1i(u.coatHeld, coatHeld ? 1 : 0);
-    // Held layers read their fitted lobes where the grid has them (ggx_fitted_lobes.h).
-    gl->glUniform1i(u.specularFitted, specularHeld && ggxReadsFittedLobes(m.layers.roughness, specularLookups, mapped) ? 1 : 0);
-    gl->glUniform1i(u.coatFitted, coatHeld && ggxReadsFittedLobes(m.layers.coatRoughness, coatLookups, false) ? 1 : 0);
+    // Layers read their fitted lobes where the grid has them (ggx_fitted_lobes.h), held or not.
+    gl->glUniform1i(u.specularFitted, ggxReadsFittedLobes(m.layers.roughness, specularLookups, mapped) ? 1 : 0);
+    gl->glUniform1i(u.coatFitted, plan.hasCoat && ggxReadsFittedLobes(m.layers.coatRoughness, coatLookups, false) ? 1 : 0);
     // A layer reading the remainder reads its entries from ggxHeadOnEntry to its last
     // (remainderEntriesOf, without computing ggxEntries again each draw): its lookups' range.
     const double widest = environment ? widestLight(environment->lights) : 0.0;

@@ -47,8 +47,9 @@ struct FittedLobe {
 };
 
 // Whether a layer of `roughness` reading `lookups` lookups reads the fitted lobes instead: the
-// renderer's K (kFittedLobeCount) and a roughness the grid covers, r 0.1–0.9. From r 0.8 a layer
-// blends them with its mean lobe (ggx_sampling.h, meanLobeShare), which it reads alone from 0.9.
+// renderer's K (kFittedLobeCount) and a roughness from 0 (not the mirror) to 0.9; below the grid's
+// r 0.1 its first row's lobes at the layer's α. From r 0.8 a layer blends them with its mean lobe
+// (ggx_sampling.h, meanLobeShare), which it reads alone from 0.9.
 bool readsFittedLobes(double roughness, int lookups);
 
 // The fitted lobes at `roughness` and N·v (bilinear between the nodes, clamped to the grid).
