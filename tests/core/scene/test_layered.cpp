@@ -93,7 +93,7 @@ TEST(LayeredWeights, LambdasInUseFollowTheLayers) {
     m.layered = true;
     m.layers.roughness = 0.4f;
     // Each GGX layer: its Phong stand-in's λ, its visible normals' sharpest and widest
-    // (ggx_sampling.h) and, from r 0.1 to 0.5, its fitted lobes' (ggx_fitted_lobes.h); then the
+    // (ggx_sampling.h) and, up to r 0.9, its fitted lobes' (ggx_fitted_lobes.h); then the
     // diffuse base.
     const double roughness = m.layers.roughness;
     const ExponentRange specular = lookupExponentRange(roughness * roughness, kGgxLookups);
@@ -101,11 +101,11 @@ TEST(LayeredWeights, LambdasInUseFollowTheLayers) {
     EXPECT_EQ(lambdasOf(m), (std::vector<double>{specularLambda(m.layers), exponentToLambda(specular.sharpest),
                                                  exponentToLambda(specular.widest), exponentToLambda(fitted.sharpest),
                                                  exponentToLambda(fitted.widest), diffuseLambda()}));
-    m.layers.coat = 0.5f;  // its roughness 0.05: visible normals only
-    EXPECT_EQ(lambdasOf(m).size(), 9u);
+    m.layers.coat = 0.5f;  // its roughness 0.05: visible normals and r 0.1's fitted lobes at its α
+    EXPECT_EQ(lambdasOf(m).size(), 11u);
     m.useIrradiance = true;  // the base from the irradiance map: no diffuse lobe from the chain
     const std::vector<double> lambdas = lambdasOf(m);
-    ASSERT_EQ(lambdas.size(), 8u);
+    ASSERT_EQ(lambdas.size(), 10u);
     EXPECT_NEAR(lambdas[0], specularLambda(m.layers), 0.0);
     EXPECT_NEAR(lambdas[5], coatLambda(m.layers), 0.0);
     EXPECT_LT(exponentToLambda(specular.sharpest), exponentToLambda(specular.widest));
