@@ -100,14 +100,6 @@ RadianceTree::RadianceTree(const CubeMap& base) {
     }
 }
 
-glm::dvec3 RadianceTree::radianceAt(const glm::dvec3& direction) const {
-    if (levels_.empty()) return glm::dvec3(0.0);
-    const Level& base = levels_.front();
-    const TexelRef t = texelOf(directionToFace(glm::vec3(direction)), base.size);
-    const std::size_t i = (static_cast<std::size_t>(t.face) * base.size + t.y) * base.size + t.x;
-    return base.energy[i] / texelSolidAngle(t.x, t.y, base.size);
-}
-
 glm::dvec3 RadianceTree::totalEnergy() const {
     glm::dvec3 sum(0.0);
     if (levels_.empty()) return sum;

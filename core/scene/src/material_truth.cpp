@@ -54,7 +54,6 @@ glm::dvec3 energyCompensation(const GltfBrdf& brdf, double roughness, double cos
     return scatteringCompensation(brdf.f0, GgxAlbedoTable::shared().at(roughness, cosView), scattering);
 }
 
-
 MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layers, const glm::dvec3& n,
                             const glm::dvec3& v, Scattering scattering, const RadianceTree::Accuracy& accuracy) {
     const GltfBrdf brdf = gltfBrdfOf(layers);

@@ -97,31 +97,41 @@ TEST(MaterialTruth, SpecularWeightAndColourSetTheDielectricsFresnelAsKhrMaterial
     }
 }
 
+// The one lit texel of the two tests below: (kLitX, kLitY) of face PZ of a kLitSize² cube.
+constexpr int kLitX = 30, kLitY = 25, kLitSize = 64;
+
+// f·cos times the lit texel's radiance over its area, by a 64 × 64 grid of its parts with their
+// exact solid angles.
+glm::dvec3 litTexelIntegral(const GltfBrdf& brdf, const glm::dvec3& n, const glm::dvec3& v, const Rgb& radiance) {
+    glm::dvec3 sum(0.0);
+    const int parts = 64;
+    for (int j = 0; j < parts; ++j)
+        for (int i = 0; i < parts; ++i) {
+            const double s0 = (kLitX + double(i) / parts) / kLitSize, s1 = (kLitX + double(i + 1) / parts) / kLitSize;
+            const double t0 = (kLitY + double(j) / parts) / kLitSize, t1 = (kLitY + double(j + 1) / parts) / kLitSize;
+            const glm::dvec3 l = glm::dvec3(faceToDirection(Face::PZ, float(0.5 * (s0 + s1)), float(0.5 * (t0 + t1))));
+            const double omega = faceRectSolidAngle(2 * s0 - 1, 2 * t0 - 1, 2 * s1 - 1, 2 * t1 - 1);
+            sum += gltfBrdfCosine(brdf, n, v, l).total() * glm::dvec3(radiance) * omega;
+        }
+    return sum;
+}
+
 TEST(MaterialTruth, ALoneBrightTexelGivesTheBrdfIntegratedOverItsArea) {
     // The environment is one texel of constant radiance: the integral is f·cos over its area,
     // here by a 64 × 64 grid of its parts (exact solid angles), within 0.5 % (the walk's midpoint
     // rule at its default tolerance, on a lobe 4 texels wide: 0.39 %).
-    CubeMap sun(64, Rgb(0.0f));
+    CubeMap sun(kLitSize, Rgb(0.0f));
     const Rgb radiance(500.0f, 400.0f, 300.0f);
-    sun.at(Face::PZ, 30, 25) = radiance;
+    sun.at(Face::PZ, kLitX, kLitY) = radiance;
     const RadianceTree tree(sun);
     const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 0.1, 1.0));
-    const glm::dvec3 l0 = glm::dvec3(texelDirection(Face::PZ, 30, 25, 64));
+    const glm::dvec3 l0 = glm::dvec3(texelDirection(Face::PZ, kLitX, kLitY, kLitSize));
     // Seen where the texel is near the mirror direction, so the lobes are sharp across it.
     const glm::dvec3 v = glm::normalize(2.0 * glm::dot(n, l0) * n - l0 + glm::dvec3(0.02, 0.0, 0.0));
     for (const Layers& layers : {layersOf(Rgb(0.8f, 0.3f, 0.1f), 0.4f, 0.35f, 0.7f, 0.2f), layersOf(Rgb(0.9f), 1.0f, 0.1f)}) {
         const MaterialPixel p = materialTruth(tree, layers, n, v);
         const GltfBrdf brdf = gltfBrdfOf(layers);
-        glm::dvec3 expected(0.0);
-        const int parts = 64;
-        for (int j = 0; j < parts; ++j)
-            for (int i = 0; i < parts; ++i) {
-                const double s0 = (30.0 + double(i) / parts) / 64.0, s1 = (30.0 + double(i + 1) / parts) / 64.0;
-                const double t0 = (25.0 + double(j) / parts) / 64.0, t1 = (25.0 + double(j + 1) / parts) / 64.0;
-                const glm::dvec3 l = glm::dvec3(faceToDirection(Face::PZ, float(0.5 * (s0 + s1)), float(0.5 * (t0 + t1))));
-                const double omega = faceRectSolidAngle(2 * s0 - 1, 2 * t0 - 1, 2 * s1 - 1, 2 * t1 - 1);
-                expected += gltfBrdfCosine(brdf, n, v, l).total() * glm::dvec3(radiance) * omega;
-            }
+        const glm::dvec3 expected = litTexelIntegral(brdf, n, v, radiance);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.total()[c], expected[c], 0.005 * expected[c]) << c << " metallic " << layers.metallic;
     }
 }
@@ -135,11 +145,11 @@ TEST(MaterialTruth, ABrightTexelInASharpLobesTailGivesTheBrdfIntegratedOverItsAr
     // 64 × 64 parts; the lobe 0.02–0.002 rad wide, the texel 0.06–0.4 rad off R. Within 1 % at
     // the default tolerance (the midpoint rule on a node a tenth as wide as its distance, where
     // D falls as θ⁻⁴: 0.85 % measured) and 0.2 % at 0.04 (it converges as tolerance²).
-    CubeMap sun(64, Rgb(0.0f));
+    CubeMap sun(kLitSize, Rgb(0.0f));
     const Rgb radiance(5.0e4f, 4.0e4f, 3.0e4f);
-    sun.at(Face::PZ, 30, 25) = radiance;
+    sun.at(Face::PZ, kLitX, kLitY) = radiance;
     const RadianceTree tree(sun);
-    const glm::dvec3 l0 = glm::dvec3(texelDirection(Face::PZ, 30, 25, 64));
+    const glm::dvec3 l0 = glm::dvec3(texelDirection(Face::PZ, kLitX, kLitY, kLitSize));
     int checked = 0;
     double worst = 0.0, worstFine = 0.0;
     for (double off : {0.06, 0.15, 0.4})
@@ -156,16 +166,7 @@ TEST(MaterialTruth, ABrightTexelInASharpLobesTailGivesTheBrdfIntegratedOverItsAr
                 const MaterialPixel p = materialTruth(tree, metal, n, v);
                 const MaterialPixel fine = materialTruth(tree, metal, n, v, Scattering::Single, {0.04, 0.004});
                 const GltfBrdf brdf = gltfBrdfOf(metal);
-                double expected = 0.0;
-                const int parts = 64;
-                for (int j = 0; j < parts; ++j)
-                    for (int i = 0; i < parts; ++i) {
-                        const double s0 = (30.0 + double(i) / parts) / 64.0, s1 = (30.0 + double(i + 1) / parts) / 64.0;
-                        const double t0 = (25.0 + double(j) / parts) / 64.0, t1 = (25.0 + double(j + 1) / parts) / 64.0;
-                        const glm::dvec3 l = glm::dvec3(faceToDirection(Face::PZ, float(0.5 * (s0 + s1)), float(0.5 * (t0 + t1))));
-                        const double omega = faceRectSolidAngle(2 * s0 - 1, 2 * t0 - 1, 2 * s1 - 1, 2 * t1 - 1);
-                        expected += gltfBrdfCosine(brdf, n, v, l).total().y * radiance.g * omega;
-                    }
+                const double expected = litTexelIntegral(brdf, n, v, radiance).y;
                 ASSERT_GT(expected, 0.0);
                 EXPECT_NEAR(p.total().y, expected, 0.01 * expected) << "off R " << off << " N·v " << mu << " r " << r;
                 EXPECT_NEAR(fine.total().y, expected, 0.002 * expected) << "off R " << off << " N·v " << mu << " r " << r;

@@ -179,10 +179,7 @@ Renderer::Impl::ObjectRead Renderer::Impl::bindLayered(const LayeredUniforms& u,
     LayeredLookup plan = planLayered(m, irradianceReady, environmentFaceSize);
     bindMaps(mapUniforms, m.layers);
     // The GGX layers' lookups (object.frag, readGgx) each read their own lobe per fragment: the
-    // stack where it holds it, else the chain at that lobe's level, which needs the chain from
-    // level 0.
-    if (!plan.specular.mirror) plan.specular.minLevel = 0.0f;
-    if (!plan.coat.mirror) plan.coat.minLevel = 0.0f;
+    // stack where it holds it, else the chain at that lobe's level, from level 0 (planLayered).
     const bool diffuseIrradiance = plan.diffuse.lookup == ShaderLookup::Irradiance;
     // How many lookups each GGX layer reads (fewer where a polished layer's K would be sharper than
     // the stack: ggxLayerLookups), the entries they read (ggxEntries), and whether the stack holds

@@ -58,9 +58,6 @@ public:
     // shared between threads); walkCount() walks again and counts, for the bench and the tests.
     std::size_t walkCount(const Focus& focus, const Accuracy& accuracy = {}) const;
 
-    // The decoded radiance along `direction` (its base texel's, constant over the texel).
-    glm::dvec3 radianceAt(const glm::dvec3& direction) const;
-    int baseSize() const { return levels_.empty() ? 0 : levels_.front().size; }
     glm::dvec3 totalEnergy() const;
 
 private:
