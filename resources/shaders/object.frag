@@ -93,6 +93,9 @@ vec3 heldBlend(LayerRead r, vec3 light, float n, int subtracted) {
     return mix(heldRead(r, light, j, subtracted), heldRead(r, light, wider, subtracted), w);
 }
 
+// The chain level holding lobe n (phong.h, regularScheduleLevel): 0 for the mirror.
+float chainLevelOf(float n) { return isinf(n) ? 0.0 : clamp(exponentLambda(n) + uLevelOffset, 0.0, uLastLevel); }
+
 // A lookup's value where the stack may not hold it: its entry where the stack holds it, else the
 // chain at the level that holds the lobe the footprint shows (phong.h, regularScheduleLevel): a
 // near-mirror lookup reads the base, not a blurred level the hardware's footprint would pick (a
@@ -104,8 +107,7 @@ vec3 chainRead(LayerRead r, vec3 light, float shown, int entry, int apart) {
         shown = uStackExponent[j];
         value = stackEntryAt(j, light);
     } else {
-        float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
-        value = textureLod(uEnvironment, light, level).rgb;
+        value = textureLod(uEnvironment, light, chainLevelOf(shown)).rgb;
     }
     return value - lightsThrough(light, shown, apart);
 }
@@ -124,7 +126,7 @@ vec3 fittedChainRead(LayerRead r, vec3 light, float shown, int apart) {
         int j = min(entry, r.entries.y);
         return stackEntryAt(j, light) - lightsThrough(light, uStackExponent[j], apart);
     }
-    float level = isinf(shown) ? 0.0 : clamp(exponentLambda(shown) + uLevelOffset, 0.0, uLastLevel);
+    float level = chainLevelOf(shown);
     float texel = 2.0 / float(textureSize(uEnvironment, 0).x);
     float spread = level > 0.0 || isinf(shown) ? 0.0 : sqrt(max(1.0 / (shown + 2.0) - texel * texel / 6.0, 0.0));
     vec3 e1 = normalize(cross(light, abs(light.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
