@@ -124,14 +124,6 @@ Errors errorsOf(const std::vector<glm::dvec3>& shown, const std::vector<glm::dve
     return e;
 }
 
-// A pixel's normal and view at its centre (from the AOV: N, and R = reflect(−v, N)), and their
-// change to the next pixel right and down: central differences, one-sided at the object's edge,
-// none where neither neighbour is on it (the shader's dFdx/dFdy, from the same quads).
-struct PixelGeometry {
-    glm::dvec3 n{0.0, 0.0, 1.0}, v{0.0, 0.0, 1.0};
-    glm::dvec3 dndx{0.0}, dndy{0.0}, dvdx{0.0}, dvdy{0.0};
-};
-
 // One row's pixels, for looking at where the error is: DIR/map-face-side-material-K.csv.
 void dumpPixels(const std::string& folder, const std::string& map, int face, int side, const std::string& material,
                 int lookups, int width, const std::vector<std::size_t>& sample, const std::vector<double>& cosView,
@@ -154,47 +146,6 @@ void dumpPixels(const std::string& folder, const std::string& map, int face, int
                      g.n.x, g.n.y, g.n.z, g.v.x, g.v.y, g.v.z);
     }
     std::fclose(out);
-}
-
-PixelGeometry pixelGeometry(const ui::AovImage& aov, std::size_t i) {
-    const auto normalAt = [&](std::size_t k) { return glm::normalize(glm::dvec3(aov.diffuse.direction[k])); };
-    const auto viewAt = [&](std::size_t k) {
-        const glm::dvec3 n = normalAt(k), r = glm::normalize(glm::dvec3(aov.direction[k]));
-        return glm::normalize(2.0 * glm::dot(n, r) * n - r);
-    };
-    const int w = aov.width, h = aov.height;
-    const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
-    const auto on = [&](int px, int py) {
-        return px >= 0 && py >= 0 && px < w && py < h &&
-               aov.exponent[static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px)] != 0.0f;
-    };
-    const auto index = [&](int px, int py) { return static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px); };
-    PixelGeometry g;
-    g.n = normalAt(i);
-    g.v = viewAt(i);
-    const auto change = [&](int ax, int ay, glm::dvec3& dn, glm::dvec3& dv) {
-        const bool ahead = on(x + ax, y + ay), behind = on(x - ax, y - ay);
-        if (ahead && behind) {
-            dn = 0.5 * (normalAt(index(x + ax, y + ay)) - normalAt(index(x - ax, y - ay)));
-            dv = 0.5 * (viewAt(index(x + ax, y + ay)) - viewAt(index(x - ax, y - ay)));
-        } else if (ahead) {
-            dn = normalAt(index(x + ax, y + ay)) - g.n;
-            dv = viewAt(index(x + ax, y + ay)) - g.v;
-        } else if (behind) {
-            dn = g.n - normalAt(index(x - ax, y - ay));
-            dv = g.v - viewAt(index(x - ax, y - ay));
-        }
-    };
-    change(1, 0, g.dndx, g.dvdx);
-    change(0, 1, g.dndy, g.dvdy);
-    return g;
-}
-
-// Positions per side for a pixel's mean: enough that R moves less than about half the lobe's
-// width between them (R turns twice as fast as N, and with v), at most 4 (16 positions).
-int areaSubdivisions(const PixelGeometry& g, double alpha) {
-    const double turn = std::max(glm::length(2.0 * g.dndx - g.dvdx), glm::length(2.0 * g.dndy - g.dvdy));
-    return std::clamp(static_cast<int>(std::ceil(2.0 * turn / alpha)), 1, 4);
 }
 
 Scene sphereScene(const Layers& layers, int lookups, bool lights, Scattering scattering) {
@@ -317,18 +268,14 @@ int runTruthBench(Args args) {
                                 geometry.resize(sample.size());
                                 const double alpha = std::max(1e-3, static_cast<double>(layers.roughness * layers.roughness));
                                 parallelFor(0, static_cast<int>(sample.size()), [&](int j) {
-                                    const PixelGeometry g = pixelGeometry(aov, sample[static_cast<std::size_t>(j)]);
+                                    const PixelGeometry g = ui::aovPixelGeometry(aov, sample[static_cast<std::size_t>(j)]);
                                     geometry[static_cast<std::size_t>(j)] = g;
                                     const int s = truthOverArea ? areaSubdivisions(g, alpha) : 1;
-                                    glm::dvec3 t(0.0), kk(0.0);
+                                    glm::dvec3 kk(0.0);
                                     for (int sy = 0; sy < s; ++sy)
                                         for (int sx = 0; sx < s; ++sx) {
-                                            const double ox = (sx + 0.5) / s - 0.5, oy = (sy + 0.5) / s - 0.5;
-                                            const glm::dvec3 n = glm::normalize(g.n + ox * g.dndx + oy * g.dndy);
-                                            glm::dvec3 v = glm::normalize(g.v + ox * g.dvdx + oy * g.dvdy);
-                                            // Below the surface only by the linearization at a rim.
-                                            if (glm::dot(n, v) < 1e-4) v = glm::normalize(v + (1e-4 - glm::dot(n, v)) * n);
-                                            t += materialTruth(tree, layers, n, v, scattering).total();
+                                            glm::dvec3 n, v;
+                                            g.at((sx + 0.5) / s - 0.5, (sy + 0.5) / s - 0.5, n, v);
                                             // Karis compensated as Filament compensates it: its
                                             // specular × the same factor.
                                             MaterialPixel split = karisSplitSum(tree, layers, n, v);
@@ -336,7 +283,7 @@ int runTruthBench(Args args) {
                                                                              glm::dot(n, v), scattering);
                                             kk += split.total();
                                         }
-                                    truth[static_cast<std::size_t>(j)] = t / double(s * s);
+                                    truth[static_cast<std::size_t>(j)] = materialTruthOverPixel(tree, layers, g, s, scattering).total();
                                     karis[static_cast<std::size_t>(j)] = kk / double(s * s);
                                     cosView[static_cast<std::size_t>(j)] = std::clamp(glm::dot(g.n, g.v), 0.0, 1.0);
                                 });

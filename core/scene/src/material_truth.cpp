@@ -128,4 +128,36 @@ MaterialPixel karisSplitSum(const RadianceTree& environment, const Layers& layer
     return pixel;
 }
 
+void PixelGeometry::at(double ox, double oy, glm::dvec3& normal, glm::dvec3& view) const {
+    normal = glm::normalize(n + ox * dndx + oy * dndy);
+    view = glm::normalize(v + ox * dvdx + oy * dvdy);
+    const double cosView = glm::dot(normal, view);
+    if (cosView < 1e-4) view = glm::normalize(view + (1e-4 - cosView) * normal);
+}
+
+int areaSubdivisions(const PixelGeometry& g, double alpha) {
+    const double turn = std::max(glm::length(2.0 * g.dndx - g.dvdx), glm::length(2.0 * g.dndy - g.dvdy));
+    return std::clamp(static_cast<int>(std::ceil(2.0 * turn / std::max(alpha, 1e-3))), 1, 4);
+}
+
+MaterialPixel materialTruthOverPixel(const RadianceTree& environment, const Layers& layers, const PixelGeometry& g,
+                                     int subdivisions, Scattering scattering, const RadianceTree::Accuracy& accuracy) {
+    const int s = std::max(subdivisions, 1);
+    MaterialPixel mean;
+    for (int sy = 0; sy < s; ++sy)
+        for (int sx = 0; sx < s; ++sx) {
+            glm::dvec3 n, v;
+            g.at((sx + 0.5) / s - 0.5, (sy + 0.5) / s - 0.5, n, v);
+            const MaterialPixel p = materialTruth(environment, layers, n, v, scattering, accuracy);
+            mean.diffuse += p.diffuse;
+            mean.specular += p.specular;
+            mean.coat += p.coat;
+        }
+    const double count = static_cast<double>(s * s);
+    mean.diffuse /= count;
+    mean.specular /= count;
+    mean.coat /= count;
+    return mean;
+}
+
 }  // namespace mipgloss

@@ -5,6 +5,8 @@
 #include "mipgloss/scene/aov_exactness.h"
 #include "mipgloss/scene/bounds.h"
 
+#include <glm/geometric.hpp>
+
 namespace mipgloss::ui {
 
 AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int width, int height) {
@@ -105,6 +107,42 @@ AovImage Renderer::renderAov(const Scene& scene, const OrbitCamera& camera, int 
     // Pixels mixing lobes (multisampling, the background) are not exact (aov_exactness.h).
     aov.exact = withoutMixedPixels(width, height, aov.exponent, aov.exact);
     return aov;
+}
+
+// Central differences, one-sided at the object's edge, none where neither neighbour is on it
+// (a rasterizer's dFdx/dFdy come from the same neighbours).
+PixelGeometry aovPixelGeometry(const AovImage& aov, std::size_t i) {
+    const auto normalAt = [&](std::size_t k) { return glm::normalize(glm::dvec3(aov.diffuse.direction[k])); };
+    const auto viewAt = [&](std::size_t k) {
+        const glm::dvec3 n = normalAt(k), r = glm::normalize(glm::dvec3(aov.direction[k]));
+        return glm::normalize(2.0 * glm::dot(n, r) * n - r);
+    };
+    const int w = aov.width, h = aov.height;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+    const auto on = [&](int px, int py) {
+        return px >= 0 && py >= 0 && px < w && py < h &&
+               aov.exponent[static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px)] != 0.0f;
+    };
+    const auto index = [&](int px, int py) { return static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px); };
+    PixelGeometry g;
+    g.n = normalAt(i);
+    g.v = viewAt(i);
+    const auto change = [&](int ax, int ay, glm::dvec3& dn, glm::dvec3& dv) {
+        const bool ahead = on(x + ax, y + ay), behind = on(x - ax, y - ay);
+        if (ahead && behind) {
+            dn = 0.5 * (normalAt(index(x + ax, y + ay)) - normalAt(index(x - ax, y - ay)));
+            dv = 0.5 * (viewAt(index(x + ax, y + ay)) - viewAt(index(x - ax, y - ay)));
+        } else if (ahead) {
+            dn = normalAt(index(x + ax, y + ay)) - g.n;
+            dv = viewAt(index(x + ax, y + ay)) - g.v;
+        } else if (behind) {
+            dn = g.n - normalAt(index(x - ax, y - ay));
+            dv = g.v - viewAt(index(x - ax, y - ay));
+        }
+    };
+    change(1, 0, g.dndx, g.dvdx);
+    change(0, 1, g.dndy, g.dvdy);
+    return g;
 }
 
 }  // namespace mipgloss::ui

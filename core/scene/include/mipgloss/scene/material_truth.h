@@ -37,6 +37,29 @@ MaterialPixel materialTruth(const RadianceTree& environment, const Layers& layer
                             const glm::dvec3& v, Scattering scattering = Scattering::Single,
                             const RadianceTree::Accuracy& accuracy = {});
 
+// A pixel's normal and view at its centre (unit, the environment's frame) and their change to the
+// next pixel right (x) and down (y): what a pixel's truth over its area moves across.
+struct PixelGeometry {
+    glm::dvec3 n{0.0, 0.0, 1.0}, v{0.0, 0.0, 1.0};
+    glm::dvec3 dndx{0.0}, dndy{0.0}, dvdx{0.0}, dvdy{0.0};
+    // N and v at (ox, oy) pixels from the centre, to first order, as a rasterizer's derivatives
+    // move them; v raised to just above the surface where that takes it below (a rim's
+    // linearization).
+    void at(double ox, double oy, glm::dvec3& normal, glm::dvec3& view) const;
+};
+
+// Positions per side for a pixel's mean (materialTruthOverPixel): enough that R moves less than
+// about half the sharpest lobe's α between them (R turns twice as fast as N, and with v), at
+// most 4 (16 positions).
+int areaSubdivisions(const PixelGeometry& g, double alpha);
+
+// The truth over a pixel's area, as a path tracer's box filter gives it: the mean of materialTruth
+// over s × s positions evenly spread over the pixel (s = areaSubdivisions for the material's sharpest
+// layer); s = 1 is the truth at its centre.
+MaterialPixel materialTruthOverPixel(const RadianceTree& environment, const Layers& layers, const PixelGeometry& g,
+                                     int subdivisions, Scattering scattering = Scattering::Single,
+                                     const RadianceTree::Accuracy& accuracy = {});
+
 // The exact Karis split sum (Karis 2013; Filament, three.js and the glTF Sample Viewer compute its
 // approximation): the GGX lobe prefiltered with N = v = R (weighted by N·ω), times the exact
 // albedo F0·A + B at N·v; the diffuse E(N)/π·c_diff·(1 − F0·A − B); a coat the same way, layered

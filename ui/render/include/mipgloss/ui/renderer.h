@@ -19,6 +19,7 @@
 #include "mipgloss/scene/camera.h"
 #include "mipgloss/scene/environment.h"
 #include "mipgloss/scene/lobes.h"
+#include "mipgloss/scene/material_truth.h"
 #include "mipgloss/scene/scene.h"
 
 #include <glm/vec4.hpp>
@@ -84,6 +85,12 @@ struct AovImage {
     Layer diffuse, specular, coat;
     bool layered = false;  // some object drawn has a layered material
 };
+
+// Pixel i's normal and view (N: the diffuse layer's direction, v = 2(N·R)N − R from the specular's
+// R) and their change to the next pixels right and down, from its neighbours on the object: what
+// its truth over its area moves across (material_truth.h, materialTruthOverPixel). A layered
+// material's AOV.
+PixelGeometry aovPixelGeometry(const AovImage& aov, std::size_t i);
 
 class Renderer {
 public:
