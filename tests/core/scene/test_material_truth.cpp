@@ -97,6 +97,44 @@ TEST(MaterialTruth, SpecularWeightAndColourSetTheDielectricsFresnelAsKhrMaterial
     }
 }
 
+// A pixel's truth over its area (materialTruthOverPixel) is the mean of the truth at its s × s
+// positions, N and v moved to each to first order: in the white furnace a white metal's albedo,
+// GgxAlbedoTable's at each position's N·v, here a rim pixel whose N·v runs from below 0 to 0.33
+// across it (some positions' v below the surface, raised to just above it). A pixel whose N and v
+// do not change is the truth at its centre, whatever s.
+TEST(MaterialTruth, OverAPixelIsTheMeanOfTheTruthAtItsPositions) {
+    const RadianceTree white{CubeMap(32, Rgb(1.0f))};
+    const Layers metal = layersOf(Rgb(1.0f), 1.0f, 0.4f);
+    PixelGeometry still;
+    still.n = glm::normalize(glm::dvec3(0.1, 0.2, 1.0));
+    still.v = viewAt(0.6);
+    const double centre = materialTruth(white, metal, still.n, still.v).total().y;
+    EXPECT_NEAR(materialTruthOverPixel(white, metal, still, 3).total().y, centre, 1e-12 * centre);
+
+    PixelGeometry rim;
+    rim.n = glm::normalize(glm::dvec3(0.16, 0.0, 0.987));
+    rim.v = glm::dvec3(1.0, 0.0, 0.0);
+    rim.dndx = glm::dvec3(-0.5, 0.0, 0.08);
+    rim.dndy = glm::dvec3(0.0, 0.04, 0.0);
+    rim.dvdx = glm::dvec3(0.0, 0.0, 0.01);
+    const int s = 4;
+    double expected = 0.0;
+    int below = 0;
+    for (int sy = 0; sy < s; ++sy)
+        for (int sx = 0; sx < s; ++sx) {
+            const double ox = (sx + 0.5) / s - 0.5, oy = (sy + 0.5) / s - 0.5;
+            const glm::dvec3 n = glm::normalize(rim.n + ox * rim.dndx + oy * rim.dndy);
+            const glm::dvec3 v = glm::normalize(rim.v + ox * rim.dvdx);
+            below += glm::dot(n, v) < 0.0 ? 1 : 0;
+            expected += GgxAlbedoTable::shared().at(0.4, std::max(glm::dot(n, v), 1e-4)).specular(1.0) / (s * s);
+        }
+    EXPECT_GT(below, 0);  // the case holds positions the linearization takes below the surface
+    EXPECT_NEAR(materialTruthOverPixel(white, metal, rim, s).total().y, expected, 0.005 * expected);
+    // Four positions per side here: R turns by about 1 rad across the pixel, α is 0.16.
+    EXPECT_EQ(areaSubdivisions(rim, 0.16), 4);
+    EXPECT_EQ(areaSubdivisions(still, 0.16), 1);
+}
+
 // The one lit texel of the two tests below: (kLitX, kLitY) of face PZ of a kLitSize² cube.
 constexpr int kLitX = 30, kLitY = 25, kLitSize = 64;
 
