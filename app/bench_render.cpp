@@ -200,7 +200,7 @@ int runRenderBench(Args args, const char* argv0) {
             m.layers.coatRoughness = 0.2f;
         }
     };
-    std::vector<double> shared, distinct, spread, plastic, coated, rough;
+    std::vector<double> shared, distinct, spread, plastic, coated, rough, plasticUntapped, coatedUntapped;
     for (int round = 0; round < 3; ++round) {
         setLambdas([](int) { return 3.0f; });
         shared.push_back(timeFrames(scene));
@@ -213,11 +213,19 @@ int runRenderBench(Args args, const char* argv0) {
         plastic.push_back(timeFrames(scene));
         setLayered(true, 1.0f, lambda3Roughness);
         coated.push_back(timeFrames(scene));
+        // The same two without taps along the pixel's footprint (DisplaySettings::footprintTaps).
+        scene.display.footprintTaps = false;
+        setLayered(true, 0.0f, lambda3Roughness);
+        plasticUntapped.push_back(timeFrames(scene));
+        setLayered(true, 1.0f, lambda3Roughness);
+        coatedUntapped.push_back(timeFrames(scene));
+        scene.display.footprintTaps = true;
         setLayered(true, 0.0f, 0.5f);
         rough.push_back(timeFrames(scene));
         setLayered(false, 0.0f, lambda3Roughness);
     }
-    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated, &rough}) std::sort(v->begin(), v->end());
+    for (auto* v : {&shared, &distinct, &spread, &plastic, &coated, &rough, &plasticUntapped, &coatedUntapped})
+        std::sort(v->begin(), v->end());
     std::cout << "one shared lambda (3):          " << shared[1] << " ms/frame\n"
               << objects << " lambdas 3 + i/512:          " << distinct[1] << " ms/frame  ratio "
               << distinct[1] / shared[1] << "\n"
@@ -228,6 +236,10 @@ int runRenderBench(Args args, const char* argv0) {
               << "layered, + clear coat:          " << coated[1] << " ms/frame  ratio " << coated[1] / shared[1]
               << "\n"
               << "layered, rough (r 0.5):         " << rough[1] << " ms/frame  ratio " << rough[1] / shared[1] << "\n"
+              << "layered, no footprint taps:     " << plasticUntapped[1] << " ms/frame  ratio "
+              << plasticUntapped[1] / shared[1] << "  (taps cost " << plastic[1] / plasticUntapped[1] << "x)\n"
+              << "+ clear coat, no taps:          " << coatedUntapped[1] << " ms/frame  ratio "
+              << coatedUntapped[1] / shared[1] << "  (taps cost " << coated[1] / coatedUntapped[1] << "x)\n"
               << "samplers created: " << renderer.counters().samplersCreated << "\n";
     return 0;
 }

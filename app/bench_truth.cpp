@@ -34,7 +34,7 @@ namespace mipgloss::app {
 
 const char* kTruthBenchUsage = R"(  mipgloss bench truth --env FILE [--env FILE]... [--env-sizes 128,256] [--sizes 384,96]
                        [--lookups 4,8,16] [--lights on|off|both] [--roughness 0.05,0.2,0.3,0.6,0.7,1]
-                       [--pixels P] [--frames F] [--truth-at area|centre] [--dump DIR]
+                       [--pixels P] [--frames F] [--truth-at area|centre] [--truth-positions S] [--no-taps] [--dump DIR]
                        [--scattering single|compensated]
 
 bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0.1, 0.1, and a metal,
@@ -57,8 +57,11 @@ bench truth: a sphere in each layered material (a dielectric, base colour 0.8, 0
   --truth-at WHERE  each pixel's truth over its area (default: the mean over S×S positions, as a
                     path tracer's box filter, S from the change of R across it against the lobe),
                     or at its centre ("centre")
+  --truth-positions S  with --truth-at area, at most S positions per side (default 4)
+  --no-taps         each pixel shaded at its centre, its lobes widened by the footprint, not at
+                    taps along the footprint (DisplaySettings::footprintTaps)
   --dump DIR        each row's pixels as CSV in DIR (x, y, N·v, shown, truth, Karis, RGB each;
-                    the normal and view at the pixel's centre)
+                    the normal and view at the pixel's centre, their change to the next pixels)
   --scattering S    single (default: the glTF specification's BRDF) or compensated (multiple
                     scattering, ggx_sampling.h): the picture, the truth and Karis all so
 )";
@@ -136,19 +139,22 @@ void dumpPixels(const std::string& folder, const std::string& map, int face, int
     const std::filesystem::path path = std::filesystem::path(folder) / name;
     std::FILE* out = std::fopen(path.string().c_str(), "w");
     if (!out) throw std::runtime_error("bench truth: cannot write " + path.string());
-    std::fprintf(out, "x,y,cos_view,shown_r,shown_g,shown_b,truth_r,truth_g,truth_b,karis_r,karis_g,karis_b,n_x,n_y,n_z,v_x,v_y,v_z\n");
+    std::fprintf(out, "x,y,cos_view,shown_r,shown_g,shown_b,truth_r,truth_g,truth_b,karis_r,karis_g,karis_b,n_x,n_y,n_z,v_x,v_y,v_z,"
+                      "dndx_x,dndx_y,dndx_z,dndy_x,dndy_y,dndy_z,dvdx_x,dvdx_y,dvdx_z,dvdy_x,dvdy_y,dvdy_z\n");
     for (std::size_t j = 0; j < sample.size(); ++j) {
         const std::size_t i = sample[j];
         const PixelGeometry& g = geometry[j];
-        std::fprintf(out, "%zu,%zu,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f\n",
+        std::fprintf(out, "%zu,%zu,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f",
                      i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width), cosView[j], shown[j].x,
                      shown[j].y, shown[j].z, truth[j].x, truth[j].y, truth[j].z, karis[j].x, karis[j].y, karis[j].z,
                      g.n.x, g.n.y, g.n.z, g.v.x, g.v.y, g.v.z);
+        for (const glm::dvec3& d : {g.dndx, g.dndy, g.dvdx, g.dvdy}) std::fprintf(out, ",%.7g,%.7g,%.7g", d.x, d.y, d.z);
+        std::fprintf(out, "\n");
     }
     std::fclose(out);
 }
 
-Scene sphereScene(const Layers& layers, int lookups, bool lights, Scattering scattering) {
+Scene sphereScene(const Layers& layers, int lookups, bool lights, Scattering scattering, bool taps) {
     static const auto sphere = std::make_shared<const Mesh>(makeSphere(128, 256));
     Scene scene;
     SceneObject object;
@@ -163,6 +169,7 @@ Scene sphereScene(const Layers& layers, int lookups, bool lights, Scattering sca
     scene.display.ggxLookups = lookups;
     scene.display.brightLights = lights;
     scene.display.scattering = scattering;
+    scene.display.footprintTaps = taps;
     return scene;
 }
 
@@ -174,6 +181,8 @@ int runTruthBench(Args args) {
     int pixels = 800, frames = 5;
     std::string dumpFolder;
     bool truthOverArea = true;
+    int truthPositions = 4;
+    bool footprintTaps = true;
     std::vector<bool> lightsModes{true};
     Scattering scattering = Scattering::Single;
     while (!args.empty()) {
@@ -196,6 +205,8 @@ int runTruthBench(Args args) {
             const std::string v = args.value(a);
             if (!parseScattering(v, scattering)) throw UsageError("--scattering is single or compensated, got '" + v + "'");
         }
+        else if (a == "--no-taps") footprintTaps = false;
+        else if (a == "--truth-positions") truthPositions = static_cast<int>(parseNumbers(a, args.value(a), 1, 64).front());
         else if (a == "--truth-at") {
             const std::string v = args.value(a);
             if (v == "area") truthOverArea = true;
@@ -242,7 +253,7 @@ int runTruthBench(Args args) {
                         std::vector<PixelGeometry> geometry;
                         for (const double k : lookups)
                         for (const bool lightsOn : lightsModes) {
-                            const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn, scattering);
+                            const Scene scene = sphereScene(layers, static_cast<int>(k), lightsOn, scattering, footprintTaps);
                             renderer.setLobes(makeStackEntries(*env, scene));
                             OrbitCamera camera;
                             camera.yawDegrees = 30.0f;
@@ -270,7 +281,7 @@ int runTruthBench(Args args) {
                                 parallelFor(0, static_cast<int>(sample.size()), [&](int j) {
                                     const PixelGeometry g = ui::aovPixelGeometry(aov, sample[static_cast<std::size_t>(j)]);
                                     geometry[static_cast<std::size_t>(j)] = g;
-                                    const int s = truthOverArea ? areaSubdivisions(g, alpha) : 1;
+                                    const int s = truthOverArea ? areaSubdivisions(g, alpha, truthPositions) : 1;
                                     glm::dvec3 kk(0.0);
                                     for (int sy = 0; sy < s; ++sy)
                                         for (int sx = 0; sx < s; ++sx) {

@@ -151,7 +151,8 @@ render: draws a scene offscreen with the viewer's OpenGL renderer (needs an X di
 
 bench-render: frame time of N teapots with N different lambdas against the same N teapots
   sharing one lambda (the paper: the per-object statement is free), ratio printed, and the same
-  teapots in layered materials (a plastic, with a coat, a rough plastic): each case the settled
+  teapots in layered materials (a plastic, with a coat, a rough plastic; the first two also
+  without taps along each pixel's footprint, the ratio printed): each case the settled
   picture, its lobe stack's entries made before the clock starts (--no-stack: every lobe from the
   chain, the picture before they exist). With --mesh:
   load time, first frame and frame time of that one mesh or asset (is a big scan interactive?), and

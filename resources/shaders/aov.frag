@@ -58,6 +58,10 @@ bool classifyLayer(samplerCube chain, LayerRead r, out float shown) {
 
 void main() {
     FragmentPlan p = planFragment();
+#ifdef LAYERED
+    // The layers at the pixel's centre (object.frag shades the mean of its taps, placeTaps).
+    planLayersAt(p, 0.0);
+#endif
     float specularShown, diffuseShown, coatShown;
     bool exact = classifyLayer(uEnvironment, p.specular, specularShown);
     bool diffuse = p.diffuse.kind != READ_NONE, coat = p.coat.kind != READ_NONE;

@@ -173,12 +173,9 @@ vec3 readGgx(LayerRead r, vec3 weight, vec3 edgeWeight, vec3 f0, float f90, vec3
     // The lights each loop goes through: none where it would discard them (lightsThrough).
     int apart = split ? uLightCount : 0, subtracted = subtract ? uLightCount : 0;
     // The footprint widens every lookup's lobe the same way (lobe_stack.glsl, widenedExponent), by
-    // the variance of the disc as large as the pixel's parallelogram of directions, |dx × dy|/12,
-    // not by the mean of its two axes' variances, (|dx|² + |dy|²)/24 (the single lobe's): the two
-    // agree where the footprint is round, but at a sphere's rim R sweeps 0.25 rad across a pixel
-    // one way and 0.01 the other, and the mean widened every lookup into a disc that read a soft
-    // box the pixel's reflection never meets (docs/material-truth.md, "The footprint at the rim").
-    float footprint = length(cross(r.dx, r.dy)) / 12.0;
+    // what the fragment's taps along the footprint's long axis leave of it (shading_plan.glsl,
+    // placeTaps): with one tap the disc as large as the pixel's parallelogram of directions.
+    float footprint = r.footprint;
     // Layers read their fitted lobes (ggx_fitted_lobes.h) where they have them, else the visible
     // normals: held, each from the atlas; else each as chainRead reads a lookup (a near-mirror's
     // sharp lobes from the chain's base, its tail's from the stack). The visible normals' chain
@@ -247,6 +244,19 @@ vec3 readDiffuse(FragmentPlan p) {
     return p.wDiffuse * (value - lambert) + (1.0 - p.coatWeight) * p.diffuseColour * exact;
 }
 
+// The diffuse, specular and coat of a layered fragment placed `offset` pixels along its footprint's
+// long axis (shading_plan.glsl, planLayersAt, which replaces p's layers and weights and keeps the
+// rest: no copy of the plan, which llvmpipe pays for).
+vec3 layeredAt(inout FragmentPlan p, float offset) {
+    planLayersAt(p, offset);
+    vec3 diffuse = readDiffuse(p);
+    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, p.f90, (1.0 - p.coatWeight) * p.compensation);
+    vec3 coat = vec3(0.0);
+    // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
+    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), 1.0, vec3(p.coatWeight));
+    return diffuse + specular + coat;
+}
+
 #endif
 
 layout(location = 0) out vec4 fragColour;
@@ -254,15 +264,19 @@ layout(location = 0) out vec4 fragColour;
 void main() {
     FragmentPlan p = planFragment();
 #ifdef LAYERED
-    vec3 diffuse = readDiffuse(p);
-    vec3 specular = readGgx(p.specular, p.wSpecular, p.wSpecularEdge, p.f0, p.f90, (1.0 - p.coatWeight) * p.compensation);
-    vec3 coat = vec3(0.0);
-    // The coat lobe has no Fresnel of its own (KHR_materials_clearcoat: its Fresnel is the mix's).
-    if (p.coat.kind == READ_GGX) coat = readGgx(p.coat, p.wCoat, p.wCoatEdge, vec3(1.0), 1.0, vec3(p.coatWeight));
+    // The pixel's mean over its taps along the footprint's long axis (placeTaps): the first tap
+    // outside any loop, so a fragment with one (all but those where R sweeps a sliver several
+    // lobes long) pays nothing for the others' (a CPU rasterizer runs no loop no fragment enters).
+    vec3 sum = layeredAt(p, tapOffset(p, 0));
+#ifdef FOOTPRINT_TAPS
+    // Only in the taps' program (lookup_plan.h, drawsFootprintTaps): the loop's code alone, entered
+    // by no fragment, made llvmpipe's layered frame a third slower.
+    for (int i = 1; i < p.taps; ++i) sum += layeredAt(p, tapOffset(p, i));
+#endif
     if (p.cut) discard;
     // A blended material's alpha is its coverage (glTF): the renderer blends it over what is
     // behind (object_pass.cpp).
-    fragColour = vec4(p.occlusion * (diffuse + specular + coat) + p.emissive, p.alpha);
+    fragColour = vec4(p.occlusion * sum / float(p.taps) + p.emissive, p.alpha);
 #else
     vec3 value = p.wSpecular * readLayer(uEnvironment, p.specular);
     fragColour = vec4(value, 1.0);

@@ -61,6 +61,8 @@ struct LayerRead {
     int lookups;             // READ_GGX: how many (lobes.h, ggxLayerLookups)
     float meanShare;         // READ_GGX: how much reads the mean lobe instead (ggx_sampling.h, meanLobeShare)
     bool fitted;             // READ_GGX: its lookups are the fitted lobes (ggx_fitted_lobes.h), held or not
+    float footprint;         // READ_GGX: the variance every lookup's lobe is widened by (lobe_stack.glsl,
+                             // widenedExponent): the footprint's share at this tap (FootprintTaps)
 };
 
 struct FragmentPlan {
@@ -79,6 +81,15 @@ struct FragmentPlan {
     vec3 emissive;                    // added to it (0 without maps)
     bool cut;                         // alpha below the mask's cutoff: no fragment
     float alpha;                      // the coverage blended materials draw with (else 1)
+    // A layered fragment before planLayersAt places it in its pixel: N, v (the environment's
+    // frame), their change per pixel along the footprint's long axis, the roughness at this
+    // fragment, and the taps it is shaded at.
+    vec3 normal, view, normalAlong, viewAlong;
+    vec3 rdx, rdy, ndx, ndy;
+    float roughness;
+    int taps;
+    float tapHalfWidth;  // taps at tapHalfWidth·(2(i + ½)/taps − 1) pixels along the axis
+    float tapShare;      // the footprint's share left to each tap's lobes (LayerRead.footprint)
 };
 
 LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) {
@@ -100,12 +111,14 @@ LayerRead layerRead(int kind, vec3 d, vec3 dx, vec3 dy, float n, bool useStack) 
     r.lookups = 1;
     r.meanShare = 0.0;
     r.fitted = false;
+    r.footprint = 0.0;
     return r;
 }
 
-LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, vec3 normal, vec3 view, float roughness, bool useStack, ivec2 entries,
-                  bool held, bool remainder, int lookups, float meanShare, bool fitted) {
+LayerRead ggxRead(vec3 r, vec3 dx, vec3 dy, float footprint, vec3 normal, vec3 view, float roughness, bool useStack,
+                  ivec2 entries, bool held, bool remainder, int lookups, float meanShare, bool fitted) {
     LayerRead g = layerRead(READ_GGX, r, dx, dy, 0.0, useStack);
+    g.footprint = footprint;
     g.entries = entries;
     g.held = held;
     g.remainder = remainder;
@@ -133,6 +146,54 @@ LayerRead grazingRead(vec3 d, vec3 dx, vec3 dy, float cosView) {
     r.grazingMirror = !glossy;
     return r;
 }
+
+#ifdef LAYERED
+// The taps a layered fragment is shaded at (docs/material-truth.md, "The footprint's long axis").
+// A pixel shows the mean of its material over its area (a path tracer's box filter; bench truth
+// --truth-at area). Over the pixel R sweeps the parallelogram of its derivatives dx, dy, whose
+// variances along its axes are λ±/12, λ± the eigenvalues of [dx·dx dx·dy; dx·dy dy·dy]. Where the
+// parallelogram is round, each lobe widened by it is that mean (the lobe convolved with the
+// footprint); at a sphere's rim it is a sliver (R sweeps 0.25 rad across a 384² sphere's rim pixel
+// one way, 0.01 the other), and no widened lobe is the box filter of a reflection that moves
+// several lobe widths along one axis. So the fragment is shaded at `taps` positions spaced evenly
+// along the long axis, as many as the sliver holds round footprints and no more than keep R at
+// most α (the sharpest GGX layer's) apart beyond the short axis's sweep, at most
+// MAX_FOOTPRINT_TAPS and only in the taps' program (lookup_plan.h, drawsFootprintTaps); and each
+// lobe is widened by the disc as large as what each tap keeps of the parallelogram (λ−
+// across, λ− + (λ+ − λ−)/taps² along): with one tap √(λ+λ−)/12 = |dx × dy|/12 (the same where
+// the footprint is round; "The footprint at the rim": the mean of its axes' variances read a
+// soft box the rim pixel's reflection never meets). N and v move with the taps, so the weights,
+// the horizon and the lights' highlights are the pixel's mean too.
+#ifdef FOOTPRINT_TAPS
+const int MAX_FOOTPRINT_TAPS = MAX_FOOTPRINT_TAPS_DRAWN;  // lookup_plan.h, kMaxFootprintTaps
+#else
+const int MAX_FOOTPRINT_TAPS = 1;
+#endif
+
+void placeTaps(inout FragmentPlan p, float alpha, vec3 vdx, vec3 vdy) {
+    float a = dot(p.rdx, p.rdx), b = dot(p.rdx, p.rdy), c = dot(p.rdy, p.rdy);
+    float mid = 0.5 * (a + c), spread = sqrt(0.25 * (a - c) * (a - c) + b * b);
+    float longAxis = mid + spread, shortAxis = max(mid - spread, 0.0);
+    // The long axis on the screen: λ+'s eigenvector, from the better-conditioned row.
+    vec2 axis = a >= c ? vec2(longAxis - c, b) : vec2(b, longAxis - a);
+    float axisLength = length(axis);
+    axis = axisLength > 0.0 ? axis / axisLength : vec2(1.0, 0.0);
+    // As many taps as the sliver holds round footprints (a round one needs none), and no more
+    // than α's spacing asks.
+    float excess = sqrt(max(longAxis - shortAxis, 0.0));
+    float rounds = floor(sqrt(longAxis / max(shortAxis, 1e-20 * longAxis)) + 0.5);
+    p.taps = alpha > 0.0 ? int(clamp(min(ceil(excess / alpha), rounds), 1.0, float(MAX_FOOTPRINT_TAPS))) : 1;
+    p.normalAlong = axis.x * p.ndx + axis.y * p.ndy;
+    p.viewAlong = axis.x * vdx + axis.y * vdy;
+    // Evenly spaced taps over ±h pixels have the variance of the box of half-width h less
+    // h²/(3·taps²), which each tap keeps; h² = (1 − λ−/λ+)/4 leaves each tap λ− + (λ+ − λ−)/taps²
+    // along the axis and λ− across it, and its lobes are widened by the disc of that area (the
+    // geometric mean: with one tap |dx × dy|/12, and λ−/12 as the taps grow).
+    p.tapHalfWidth = p.taps > 1 ? 0.5 * sqrt(max(1.0 - shortAxis / longAxis, 0.0)) : 0.0;
+    float along = shortAxis + (longAxis - shortAxis) / float(p.taps * p.taps);
+    p.tapShare = sqrt(along * shortAxis) / 12.0;
+}
+#endif
 
 FragmentPlan planFragment() {
     vec3 n = normalize(vNormal);
@@ -204,14 +265,46 @@ FragmentPlan planFragment() {
     p.diffuseF0 = uDiffuseF0;
     p.diffuseColour = uDiffuseColour;
 #endif
-    layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge, p.wCoat,
-                   p.wCoatEdge, p.coatWeight, p.compensation);
-    p.specular = ggxRead(r, rdx, rdy, normal, view, roughness, uUseStack, uSpecularEntries, uSpecularHeld, uSpecularRemainder, uSpecularLookups,
-                         uSpecularMeanShare, uSpecularFitted);
-    p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, ndx, ndy, 1.0, false)
-                                   : layerRead(READ_LOBE, normal, ndx, ndy, 1.0, uUseDiffuseStack);
-    p.coat = uCoat > 0.0 ? ggxRead(r, rdx, rdy, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld, uCoatRemainder,
-                                         uCoatLookups, uCoatMeanShare, uCoatFitted) : noRead();
+    p.normal = normal;
+    p.view = view;
+    p.rdx = rdx;
+    p.rdy = rdy;
+    p.ndx = ndx;
+    p.ndy = ndy;
+    p.roughness = roughness;
+    // The layers themselves are planned where the caller places the fragment (planLayersAt).
+    p.diffuse = noRead();
+    p.specular = noRead();
+    p.coat = noRead();
+    float sharpest = uCoat > 0.0 ? min(roughness, uCoatRoughness) : roughness;
+    placeTaps(p, sharpest * sharpest, dFdx(view), dFdy(view));
     return p;
 #endif
 }
+
+#ifdef LAYERED
+// The layers of a layered fragment at `offset` pixels from its centre along the footprint's long
+// axis (placeTaps): N and v moved there (to first order, as bench truth's pixel mean moves them),
+// the weights at that N·v, each GGX layer's lookups widened by the share the taps leave.
+void planLayersAt(inout FragmentPlan p, float offset) {
+    vec3 normal = normalize(p.normal + offset * p.normalAlong);
+    vec3 view = normalize(p.view + offset * p.viewAlong);
+    // Below the surface only by the linearization at a rim, or an interpolated normal there.
+    float below = 1e-4 - dot(normal, view);
+    if (below > 0.0) view = normalize(view + below * normal);
+    p.cosView = clamp(dot(normal, view), 0.0, 1.0);
+    vec3 r = reflect(-view, normal);
+    layerWeightsOf(p.cosView, p.f0, p.f90, p.diffuseF0, p.diffuseColour, p.roughness, p.wDiffuse, p.wSpecular, p.wSpecularEdge,
+                   p.wCoat, p.wCoatEdge, p.coatWeight, p.compensation);
+    p.specular = ggxRead(r, p.rdx, p.rdy, p.tapShare, normal, view, p.roughness, uUseStack, uSpecularEntries, uSpecularHeld,
+                         uSpecularRemainder, uSpecularLookups, uSpecularMeanShare, uSpecularFitted);
+    p.diffuse = uDiffuseIrradiance ? layerRead(READ_IRRADIANCE, normal, p.ndx, p.ndy, 1.0, false)
+                                   : layerRead(READ_LOBE, normal, p.ndx, p.ndy, 1.0, uUseDiffuseStack);
+    p.coat = uCoat > 0.0 ? ggxRead(r, p.rdx, p.rdy, p.tapShare, normal, view, uCoatRoughness, uUseCoatStack, uCoatEntries, uCoatHeld,
+                                   uCoatRemainder, uCoatLookups, uCoatMeanShare, uCoatFitted)
+                         : noRead();
+}
+
+// Where tap `i` of the fragment's `taps` lies along the long axis, in pixels from its centre.
+float tapOffset(FragmentPlan p, int i) { return p.tapHalfWidth * (2.0 * (float(i) + 0.5) / float(p.taps) - 1.0); }
+#endif

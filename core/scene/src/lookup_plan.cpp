@@ -69,6 +69,13 @@ LayeredLookup planLayered(const Material& material, bool irradianceReady, int ch
     return plan;
 }
 
+bool drawsFootprintTaps(const Material& material) {
+    if (!material.layered) return false;
+    const Layers& l = material.layers;
+    return l.roughness < kFootprintTapsRoughness || (l.coat > 0.0f && l.coatRoughness < kFootprintTapsRoughness) ||
+           !l.maps.roughness.empty();
+}
+
 std::string shaderDefines() {
     std::string text;
     auto define = [&](const char* name, int value) {
@@ -84,6 +91,7 @@ std::string shaderDefines() {
     define("TONE_MAP_AGX", static_cast<int>(ToneMap::Agx));
     // The GGX albedo table (ggx_sampling.h, layered.glsl) and the lookups' lobes.
     define("GGX_ROUGHNESS_STEPS", GgxAlbedoTable::kRoughnessSteps);
+    define("MAX_FOOTPRINT_TAPS_DRAWN", kMaxFootprintTaps);
     define("GGX_COS_STEPS", GgxAlbedoTable::kCosSteps);
     auto defineFloat = [&](const char* name, double value) {
         std::ostringstream number;

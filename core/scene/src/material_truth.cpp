@@ -135,9 +135,9 @@ void PixelGeometry::at(double ox, double oy, glm::dvec3& normal, glm::dvec3& vie
     if (cosView < 1e-4) view = glm::normalize(view + (1e-4 - cosView) * normal);
 }
 
-int areaSubdivisions(const PixelGeometry& g, double alpha) {
+int areaSubdivisions(const PixelGeometry& g, double alpha, int most) {
     const double turn = std::max(glm::length(2.0 * g.dndx - g.dvdx), glm::length(2.0 * g.dndy - g.dvdy));
-    return std::clamp(static_cast<int>(std::ceil(2.0 * turn / std::max(alpha, 1e-3))), 1, 4);
+    return std::clamp(static_cast<int>(std::ceil(2.0 * turn / std::max(alpha, 1e-3))), 1, std::max(most, 1));
 }
 
 MaterialPixel materialTruthOverPixel(const RadianceTree& environment, const Layers& layers, const PixelGeometry& g,

@@ -21,6 +21,32 @@ Material material(float lambda, LookupMode mode = LookupMode::Reflect) {
     return m;
 }
 
+// The taps along a pixel's footprint are drawn for a layered material whose GGX layer (the
+// specular, or a coat there is) is under roughness 0.5, or whose roughness comes from a map;
+// never for the single lobe; and the shader's cap is the plan's.
+TEST(LookupPlan, PolishedLayersAndRoughnessMapsAreDrawnWithFootprintTaps) {
+    Material single;
+    EXPECT_FALSE(drawsFootprintTaps(single));
+    Material rough;
+    rough.layered = true;
+    rough.layers.roughness = kFootprintTapsRoughness;
+    EXPECT_FALSE(drawsFootprintTaps(rough));
+    Material polished = rough;
+    polished.layers.roughness = 0.3f;
+    EXPECT_TRUE(drawsFootprintTaps(polished));
+    Material coated = rough;
+    coated.layers.coat = 1.0f;
+    coated.layers.coatRoughness = 0.1f;
+    EXPECT_TRUE(drawsFootprintTaps(coated));
+    coated.layers.coat = 0.0f;  // no coat: its roughness means nothing
+    EXPECT_FALSE(drawsFootprintTaps(coated));
+    Material mapped = rough;
+    mapped.layers.maps.roughness.file = "roughness.png";
+    EXPECT_TRUE(drawsFootprintTaps(mapped));
+    EXPECT_NE(shaderDefines().find("#define MAX_FOOTPRINT_TAPS_DRAWN " + std::to_string(kMaxFootprintTaps) + "\n"),
+              std::string::npos);
+}
+
 }  // namespace
 
 TEST(LookupPlan, MirrorReadsTheMirrorTextureAtLevelZeroWithNoStackEntry) {

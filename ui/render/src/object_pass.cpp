@@ -371,6 +371,8 @@ void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene,
         switch (kind) {
             case ObjectProgram::Single: return aov ? aovProgram.get() : objectProgram.get();
             case ObjectProgram::Layered: return aov ? aovLayeredProgram.get() : objectLayeredProgram.get();
+            case ObjectProgram::LayeredTaps: return aov ? aovLayeredProgram.get() : objectTapsProgram.get();
+            case ObjectProgram::LayeredMapsTaps: return aov ? aovMapsProgram.get() : objectMapsTapsProgram.get();
             case ObjectProgram::LayeredMaps: break;
         }
         return aov ? aovMapsProgram.get() : objectMapsProgram.get();

@@ -44,6 +44,7 @@ struct Renderer::Impl {
     // (MaterialMaps::inUse), drawn after the others (object.frag says why apart).
     std::unique_ptr<QOpenGLShaderProgram> objectMapsProgram, aovMapsProgram;
     std::unique_ptr<QOpenGLShaderProgram> objectLayeredProgram, aovLayeredProgram;
+    std::unique_ptr<QOpenGLShaderProgram> objectTapsProgram, objectMapsTapsProgram;
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
@@ -173,11 +174,16 @@ struct Renderer::Impl {
     static bool drawsMaps(const SceneObject& o, const Material& m) {
         return m.layered && (m.layers.maps.inUse() || (o.mesh && !o.mesh->colours.empty()));
     }
-    // Which program draws an object: the single lobe, the glTF material, or it with maps.
-    enum class ObjectProgram { Single, Layered, LayeredMaps };
+    // Which program draws an object: the single lobe, the glTF material, or it with maps; each
+    // layered one with or without taps along the pixel's footprint (lookup_plan.h,
+    // drawsFootprintTaps).
+    enum class ObjectProgram { Single, Layered, LayeredMaps, LayeredTaps, LayeredMapsTaps };
     static ObjectProgram programOf(const Scene& scene, const SceneObject& o) {
         const Material& m = scene.materialOf(o);
-        return !m.layered ? ObjectProgram::Single : drawsMaps(o, m) ? ObjectProgram::LayeredMaps : ObjectProgram::Layered;
+        if (!m.layered) return ObjectProgram::Single;
+        const bool taps = scene.display.footprintTaps && drawsFootprintTaps(m);
+        if (drawsMaps(o, m)) return taps ? ObjectProgram::LayeredMapsTaps : ObjectProgram::LayeredMaps;
+        return taps ? ObjectProgram::LayeredTaps : ObjectProgram::Layered;
     }
     static bool isBlended(const Material& m) { return m.layered && m.layers.maps.alphaMode == AlphaMode::Blend; }
     // Draws scene.objects[i] for each i of `objects`, in that order, with `program`.

@@ -96,11 +96,15 @@ const Scene& Viewport::shownScene(bool interactive, std::optional<Scene>& change
     const float rotation = shownView().environmentRotationDegrees;
     // While the user drags, frames skip multisampling (4× costs about 4× on a software rasteriser:
     // 370 vs 94 ms for a million triangles on llvmpipe); the release redraws it.
-    const bool dropSamples = interactive && scene.display.samples > 0;
-    if (rotation == scene.display.environmentRotationDegrees && !dropSamples) return scene;
+    const bool dropSamples = interactive && scene.display.samples > 1;
+    // And the taps along each pixel's footprint (DisplaySettings::footprintTaps: several times a
+    // polished material's frame on llvmpipe, `mipgloss bench-render`).
+    const bool dropTaps = interactive && scene.display.footprintTaps;
+    if (rotation == scene.display.environmentRotationDegrees && !dropSamples && !dropTaps) return scene;
     changed = scene;
     changed->display.environmentRotationDegrees = rotation;
     if (dropSamples) changed->display.samples = 0;
+    if (dropTaps) changed->display.footprintTaps = false;
     return *changed;
 }
 
@@ -166,7 +170,7 @@ void Viewport::paintGL() {
     const qreal ratio = devicePixelRatio();
     const int w = static_cast<int>(std::lround(width() * ratio));
     const int h = static_cast<int>(std::lround(height() * ratio));
-    const bool interactive = (dragButton_ != Qt::NoButton || turntableRunning()) && document_->scene().display.samples > 1;
+    const bool interactive = dragButton_ != Qt::NoButton || turntableRunning();
     drawInto(defaultFramebufferObject(), w, h, interactive, false, /*outline=*/true);
     if (!showCounters_ && !comparing()) {
         emit frameDrawn(renderer_->counters().frames);

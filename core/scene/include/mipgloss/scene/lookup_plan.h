@@ -51,6 +51,16 @@ struct LayeredLookup {
 };
 LayeredLookup planLayered(const Material& material, bool irradianceReady, int chainFaceSize);
 
+// Whether a layered material is drawn with taps along each pixel's footprint (shading_plan.glsl,
+// placeTaps; docs/material-truth.md, "The footprint's long axis"): a GGX layer sharper than
+// kFootprintTapsRoughness, or a roughness map (its fragments may be). A rougher layer's lobe
+// (α ≥ 0.25) is wider than R's sweep across a pixel but at a silhouette's last pixels, and the
+// taps' program costs llvmpipe about a third more per frame even where no fragment takes a second
+// tap, so such materials are drawn without them.
+inline constexpr float kFootprintTapsRoughness = 0.5f;
+inline constexpr int kMaxFootprintTaps = 4;
+bool drawsFootprintTaps(const Material& material);
+
 // "#define LOOKUP_REFLECT 0" ... and "#define TONE_MAP_LINEAR 0" ..., one line each; and the
 // split-sum table's shape and the coat's F0 for layered.glsl (specular.h).
 std::string shaderDefines();

@@ -50,8 +50,8 @@ struct PixelGeometry {
 
 // Positions per side for a pixel's mean (materialTruthOverPixel): enough that R moves less than
 // about half the sharpest lobe's α between them (R turns twice as fast as N, and with v), at
-// most 4 (16 positions).
-int areaSubdivisions(const PixelGeometry& g, double alpha);
+// most `most` (4: 16 positions).
+int areaSubdivisions(const PixelGeometry& g, double alpha, int most = 4);
 
 // The truth over a pixel's area, as a path tracer's box filter gives it: the mean of materialTruth
 // over s × s positions evenly spread over the pixel (s = areaSubdivisions for the material's sharpest

@@ -280,6 +280,11 @@ struct DisplaySettings {
     // The environment's bright texels shaded as lights with the exact BRDF (bright_lights.h); off:
     // the lookups read them with the rest (for `mipgloss bench truth` to show what they buy).
     bool brightLights = true;
+    // Each pixel of a polished layered material shaded at taps along its footprint's long axis, so
+    // it is the material's mean over its area (lookup_plan.h, drawsFootprintTaps); off: at its
+    // centre, every lobe widened by the footprint (for `bench-render --no-taps` and `bench truth
+    // --no-taps` to show what they cost and buy).
+    bool footprintTaps = true;
     // Multiple scattering (ggx_sampling.h): off, every layered material is the glTF specification's
     // single-scattering BRDF; compensated, rough metals keep the energy their microfacets bounce.
     Scattering scattering = Scattering::Single;
