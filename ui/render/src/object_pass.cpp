@@ -1,6 +1,7 @@
 // The object pass: each visible object drawn with object.frag (or aov.frag for the AOV), its
 // material's uniforms set and its lookups bound as the lookup plan says (lookup_plan.h).
 #include "renderer_impl.h"
+#include "shaders.h"
 
 #include "mipgloss/ibl/ggx_sampling.h"
 #include "mipgloss/ibl/phong.h"
@@ -361,6 +362,23 @@ void Renderer::Impl::drawObjects(QOpenGLShaderProgram& program, const Scene& sce
     }
 }
 
+// The taps' programs (renderer_impl.h, programOf) are built when an object first needs one: two
+// more programs at start-up cost every start (the default scene's render about 0.2 s), whether
+// or not a polished material is ever drawn. One that fails to build draws its objects without
+// taps (the same material, each pixel at its centre).
+QOpenGLShaderProgram* Renderer::Impl::tapsProgram(bool maps) {
+    std::unique_ptr<QOpenGLShaderProgram>& program = maps ? objectMapsTapsProgram : objectTapsProgram;
+    if (!program && !tapsProgramFailed[maps ? 1 : 0]) {
+        std::string error;
+        program = buildProgram(QStringLiteral("object.vert"), QStringLiteral("object.frag"), &error,
+                               maps ? "#define LAYERED\n#define MATERIAL_MAPS\n#define FOOTPRINT_TAPS\n"
+                                    : "#define LAYERED\n#define FOOTPRINT_TAPS\n");
+        tapsProgramFailed[maps ? 1 : 0] = !program;
+    }
+    if (program) return program.get();
+    return maps ? objectMapsProgram.get() : objectLayeredProgram.get();
+}
+
 // The objects of `set` in their programs (programOf): covering ones grouped by program, so each
 // program is bound once; blended ones farthest first, by the distance to each object's (glTF: each
 // primitive's) centre, so each is blended over what lies behind it (order-dependent blending:
@@ -371,8 +389,8 @@ void Renderer::Impl::drawAllObjects(bool aov, ObjectSet set, const Scene& scene,
         switch (kind) {
             case ObjectProgram::Single: return aov ? aovProgram.get() : objectProgram.get();
             case ObjectProgram::Layered: return aov ? aovLayeredProgram.get() : objectLayeredProgram.get();
-            case ObjectProgram::LayeredTaps: return aov ? aovLayeredProgram.get() : objectTapsProgram.get();
-            case ObjectProgram::LayeredMapsTaps: return aov ? aovMapsProgram.get() : objectMapsTapsProgram.get();
+            case ObjectProgram::LayeredTaps: return aov ? aovLayeredProgram.get() : tapsProgram(false);
+            case ObjectProgram::LayeredMapsTaps: return aov ? aovMapsProgram.get() : tapsProgram(true);
             case ObjectProgram::LayeredMaps: break;
         }
         return aov ? aovMapsProgram.get() : objectMapsProgram.get();

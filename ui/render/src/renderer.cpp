@@ -56,12 +56,9 @@ bool Renderer::initialize(std::string* error) {
     impl_->objectMapsProgram =
         buildProgram(objectVert, QStringLiteral("object.frag"), error, "#define LAYERED\n#define MATERIAL_MAPS\n");
     impl_->aovMapsProgram = buildProgram(objectVert, QStringLiteral("aov.frag"), error, "#define LAYERED\n#define MATERIAL_MAPS\n");
-    impl_->objectTapsProgram = buildProgram(objectVert, QStringLiteral("object.frag"), error, "#define LAYERED\n#define FOOTPRINT_TAPS\n");
-    impl_->objectMapsTapsProgram = buildProgram(objectVert, QStringLiteral("object.frag"), error,
-                                                "#define LAYERED\n#define MATERIAL_MAPS\n#define FOOTPRINT_TAPS\n");
     if (!impl_->objectProgram || !impl_->backgroundProgram || !impl_->toneProgram || !impl_->aovProgram ||
         !impl_->outlineProgram || !impl_->objectMapsProgram || !impl_->aovMapsProgram || !impl_->objectLayeredProgram ||
-        !impl_->aovLayeredProgram || !impl_->objectTapsProgram || !impl_->objectMapsTapsProgram) {
+        !impl_->aovLayeredProgram) {
         impl_->gl = nullptr;
         return false;
     }
@@ -122,6 +119,7 @@ void Renderer::destroy() {
     d.aovLayeredProgram.reset();
     d.objectTapsProgram.reset();
     d.objectMapsTapsProgram.reset();
+    d.tapsProgramFailed[0] = d.tapsProgramFailed[1] = false;
     d.outlineProgram.reset();
     d.environment.reset();
     d.gl = nullptr;

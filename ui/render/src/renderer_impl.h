@@ -44,7 +44,10 @@ struct Renderer::Impl {
     // (MaterialMaps::inUse), drawn after the others (object.frag says why apart).
     std::unique_ptr<QOpenGLShaderProgram> objectMapsProgram, aovMapsProgram;
     std::unique_ptr<QOpenGLShaderProgram> objectLayeredProgram, aovLayeredProgram;
+    // Built on first use (tapsProgram): none, until an object needs taps.
     std::unique_ptr<QOpenGLShaderProgram> objectTapsProgram, objectMapsTapsProgram;
+    bool tapsProgramFailed[2] = {false, false};
+    QOpenGLShaderProgram* tapsProgram(bool maps);
     GLuint emptyVao = 0;
 
     GLuint environmentTexture = 0;
